@@ -1,0 +1,33 @@
+// `pierce`: command-line front end. Subcommands: hits (see cmd_*.cpp).
+#include <iostream>
+#include <vector>
+
+#include "command.h"
+#include "pierce/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"Pierce: exact multi-hit ray traversal"};
+  app.require_subcommand(1);
+  std::vector<std::pair<CLI::App*, std::function<int()>>> commands;
+  for (auto reg : {pierce::cli::register_hits}) {
+    const std::size_t before = app.get_subcommands({}).size();
+    auto run = reg(app);
+    commands.emplace_back(app.get_subcommands({})[before], std::move(run));
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    for (auto& [sub, run] : commands)
+      if (sub->parsed()) return run();
+  } catch (const pierce::InputError& e) {
+    std::cerr << "pierce: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "pierce: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

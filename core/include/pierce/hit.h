@@ -1,0 +1,48 @@
+#pragma once
+// A ray-surface crossing and the total order on crossings (Wald et al. 2019, §3).
+#include <compare>
+#include <cstdint>
+#include <limits>
+
+#include "pierce/vec3.h"
+
+namespace pierce {
+
+inline constexpr std::uint32_t kInvalidId = std::numeric_limits<std::uint32_t>::max();
+
+struct Hit {
+  double t = std::numeric_limits<double>::infinity();
+  std::uint32_t geom = kInvalidId;
+  std::uint32_t prim = kInvalidId;  // triangle index in its geometry's input order
+  float u = 0.f, v = 0.f;           // barycentrics of vertices 1 and 2
+  Vec3f ng;                         // geometric normal (v1-v0)x(v2-v0), unnormalised
+  bool enter = false;               // ray direction against the outward (CCW) normal
+
+  bool valid() const { return geom != kInvalidId; }
+};
+
+// How hits at equal t are ranked. `geom_prim` is Wald et al.'s (t, geom, prim).
+// `leave_before_enter` ranks leaving crossings first at equal t, then (geom, prim):
+// CSG classification needs a solid closed before its touching neighbour opens.
+enum class TieOrder : std::uint8_t { geom_prim, leave_before_enter };
+
+// Strict total order on hits under a tie policy. Hits are identified by (geom, prim);
+// `enter` is a function of them, so the order stays total.
+struct HitOrder {
+  TieOrder tie = TieOrder::geom_prim;
+
+  constexpr bool less(const Hit& a, const Hit& b) const {
+    if (a.t != b.t) return a.t < b.t;
+    if (tie == TieOrder::leave_before_enter && a.enter != b.enter) return !a.enter;
+    if (a.geom != b.geom) return a.geom < b.geom;
+    return a.prim < b.prim;
+  }
+  constexpr bool operator()(const Hit& a, const Hit& b) const { return less(a, b); }
+};
+
+// "before everything": the sentinel passed as last hit when a sequence begins.
+inline constexpr Hit kNoHitYet{-std::numeric_limits<double>::infinity(), 0, 0, 0.f, 0.f, {}, false};
+
+inline bool same_hit(const Hit& a, const Hit& b) { return a.t == b.t && a.geom == b.geom && a.prim == b.prim; }
+
+}  // namespace pierce

@@ -1,0 +1,97 @@
+#pragma once
+// The kernels behind one iterator API: begin(ray[, max_hits]) then next(hit) until false.
+// Every kernel except `epsilon` returns exactly the same hits in the same total order.
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "pierce/kernels/all_hits.h"
+#include "pierce/kernels/buffered.h"
+#include "pierce/kernels/embree_kernels.h"
+#include "pierce/kernels/node_cull.h"
+#include "pierce/kernels/queue.h"
+#include "pierce/kernels/restart.h"
+
+namespace pierce {
+
+enum class KernelKind {
+  epsilon,
+  embree_restart,
+  embree_filter,
+  embree_nodecull,
+  restart,
+  queue,
+  nodecull,
+  filter,
+  buffered,
+};
+
+inline constexpr KernelKind kAllKernels[] = {
+    KernelKind::epsilon,  KernelKind::embree_restart, KernelKind::embree_filter,
+    KernelKind::embree_nodecull, KernelKind::restart, KernelKind::queue,
+    KernelKind::nodecull, KernelKind::filter,         KernelKind::buffered,
+};
+
+std::string_view kernel_name(KernelKind k);
+std::optional<KernelKind> parse_kernel(std::string_view name);
+inline bool is_exact(KernelKind k) { return k != KernelKind::epsilon; }
+
+struct KernelOptions {
+  HitOrder order;
+  double epsilon_rel = 1e-5;  // epsilon kernel only: relative to the scene diagonal
+};
+
+// A scene with every acceleration structure the kernels need: Pierce's BVH (float) and
+// Embree's scenes over the same triangles.
+class Accel {
+ public:
+  explicit Accel(const Scene& scene);
+  const Scene& scene() const { return *scene_; }
+  const Bvhf& bvh() const { return bvh_; }
+  const EmbreeAccel& embree() const { return *embree_; }
+
+ private:
+  const Scene* scene_;
+  Bvhf bvh_;
+  std::unique_ptr<EmbreeAccel> embree_;
+};
+
+// One kernel instance; reusable across rays (no allocation once warm). Not thread-safe:
+// use one per thread.
+class HitIterator {
+ public:
+  HitIterator(const Accel& accel, KernelKind kind, const KernelOptions& opts = {});
+  void begin(const Ray& ray, std::size_t max_hits = 0) {
+    std::visit([&](auto& k) { k.begin(ray, max_hits); }, impl_);
+  }
+  bool next(Hit& out) {
+    return std::visit([&](auto& k) { return k.next(out); }, impl_);
+  }
+  KernelKind kind() const { return kind_; }
+  Counters counters() const {
+    return std::visit([](const auto& k) { return k.counters; }, impl_);
+  }
+
+ private:
+  KernelKind kind_;
+  std::variant<EpsilonKernel, EmbreeRestartKernel, EmbreeFilterKernel, EmbreeNodeCullKernel, RestartKernel<float>,
+               QueueKernel<float>, NodeCullKernel<float>, AllHitsKernel<float>, BufferedKernel<float>>
+      impl_;
+};
+
+// All hits of one ray (up to max_hits, 0 = all) appended to `out`.
+void collect_hits(HitIterator& it, const Ray& ray, std::size_t max_hits, std::vector<Hit>& out);
+
+// Runs many rays on all cores (TBB). result[i] holds ray i's hits, identical whatever the
+// thread count. `progress(done)` is called from worker threads with the number of rays
+// finished so far; returning false cancels (remaining rays keep empty results) and the
+// function returns false.
+bool trace_batch(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays, std::size_t max_hits,
+                 std::vector<std::vector<Hit>>& result, const KernelOptions& opts = {},
+                 const std::function<bool(std::size_t)>& progress = {});
+
+}  // namespace pierce

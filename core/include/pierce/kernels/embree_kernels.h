@@ -1,0 +1,87 @@
+#pragma once
+// Kernels on Embree's BVH and traversal (rtcIntersect1), all exact through Pierce's
+// triangle test in a user geometry:
+//  - embree-restart: closest hit after the last one in the total order, per next();
+//  - embree-filter: all hits gathered by the filter (AGGW15), sorted, duplicates removed;
+//  - embree-nodecull: N closest with the filter shrinking tfar once N are held (GWA16).
+// And the inexact baseline on Embree's native triangles:
+//  - epsilon: closest hit, then relaunch from t + epsilon.
+#include <vector>
+
+#include "pierce/embree_accel.h"
+#include "pierce/kernels/embree_query.h"
+
+namespace pierce {
+
+// Shared ray setup: rebasing and the Embree-frame ray for a query.
+class EmbreeExactBase {
+ protected:
+  explicit EmbreeExactBase(const EmbreeAccel& acc, HitOrder order, EmbreeQuery::Mode mode);
+  // Prepares q_ for `ray`; false if the ray cannot meet the scene.
+  bool setup(const Ray& ray);
+  // Runs one rtcIntersect1 over Pierce-frame range [lo, hi].
+  void trace(double lo, double hi);
+
+  const EmbreeAccel* acc_;
+  EmbreeQuery q_;
+  Vec3d org_, dir_;
+  bool live_ = false;
+
+ public:
+  Counters counters;
+};
+
+class EmbreeRestartKernel : public EmbreeExactBase {
+ public:
+  explicit EmbreeRestartKernel(const EmbreeAccel& acc, HitOrder order = {})
+      : EmbreeExactBase(acc, order, EmbreeQuery::Mode::restart) {}
+  void begin(const Ray& ray, std::size_t max_hits = 0);
+  bool next(Hit& out);
+};
+
+class EmbreeFilterKernel : public EmbreeExactBase {
+ public:
+  explicit EmbreeFilterKernel(const EmbreeAccel& acc, HitOrder order = {})
+      : EmbreeExactBase(acc, order, EmbreeQuery::Mode::all) {}
+  void begin(const Ray& ray, std::size_t max_hits = 0);
+  bool next(Hit& out);
+
+ private:
+  std::vector<Hit> hits_;
+  std::size_t pos_ = 0;
+};
+
+class EmbreeNodeCullKernel : public EmbreeExactBase {
+ public:
+  explicit EmbreeNodeCullKernel(const EmbreeAccel& acc, HitOrder order = {})
+      : EmbreeExactBase(acc, order, EmbreeQuery::Mode::closest_n) {}
+  void begin(const Ray& ray, std::size_t max_hits = 0);
+  bool next(Hit& out);
+
+ private:
+  void collect();
+  std::vector<Hit> batch_;
+  std::size_t pos_ = 0;
+  bool exhausted_ = true;
+};
+
+// Inexact baseline: what a rendering kernel does. epsilon = epsilon_rel * scene diagonal.
+class EpsilonKernel {
+ public:
+  EpsilonKernel(const EmbreeAccel& acc, double epsilon_rel = 1e-5);
+  void begin(const Ray& ray, std::size_t max_hits = 0);
+  bool next(Hit& out);
+  Counters counters;
+
+ private:
+  const EmbreeAccel* acc_;
+  double eps_;
+  Ray ray_;
+  float tnear_ = 0;
+  bool done_ = true;
+};
+
+// Embree's own first hit on native triangles (the speed reference; not exact).
+bool embree_first_hit(const EmbreeAccel& acc, const Ray& ray, Hit& out);
+
+}  // namespace pierce

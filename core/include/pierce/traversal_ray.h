@@ -1,0 +1,60 @@
+#pragma once
+// A ray prepared once for traversal in precision T: reciprocal direction for slab tests,
+// shear constants for the watertight triangle test (Woop, Benthin, Wald 2013), and the
+// absolute padding used to keep box and triangle decisions consistent.
+#include <cmath>
+#include <utility>
+
+#include "pierce/ray.h"
+#include "pierce/vec3.h"
+
+namespace pierce {
+
+template <typename T>
+struct TraversalRay {
+  Vec3<T> org, dir, inv;
+  bool zero[3] = {false, false, false};  // direction component exactly zero
+  int kx = 0, ky = 1, kz = 2;
+  T sx = 0, sy = 0, sz = 1;
+  T tmin = 0, tmax = 0;
+  T pad = 0;  // absolute slack in t for "does the ray meet this box at all"
+
+  // scene_max_abs: largest |coordinate| in the scene, for the padding.
+  static TraversalRay make(const Ray& r, double scene_max_abs) {
+    TraversalRay tr;
+    tr.org = Vec3<T>(r.org);
+    tr.dir = Vec3<T>(r.dir);
+    for (int a = 0; a < 3; ++a) {
+      tr.zero[a] = tr.dir[a] == T(0);
+      tr.inv[a] = tr.zero[a] ? T(0) : T(1) / tr.dir[a];
+    }
+    const T ax = std::abs(tr.dir.x), ay = std::abs(tr.dir.y), az = std::abs(tr.dir.z);
+    tr.kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
+    tr.kx = (tr.kz + 1) % 3;
+    tr.ky = (tr.kx + 1) % 3;
+    if (tr.dir[tr.kz] < T(0)) std::swap(tr.kx, tr.ky);  // keep the winding, so det's sign is the facing
+    tr.sx = tr.dir[tr.kx] / tr.dir[tr.kz];
+    tr.sy = tr.dir[tr.ky] / tr.dir[tr.kz];
+    tr.sz = T(1) / tr.dir[tr.kz];
+    tr.tmin = T(r.tmin);
+    tr.tmax = T(r.tmax);
+    const double dmax = std::max({std::abs(r.dir.x), std::abs(r.dir.y), std::abs(r.dir.z)});
+    // 2^-20 of the t-span of the scene as seen from this origin: far above the rounding of
+    // the triangle test's projection, far below anything that costs traversal work.
+    tr.pad = T(std::ldexp((max_abs(r.org) + scene_max_abs) / (dmax > 0 ? dmax : 1.0), -20));
+    return tr;
+  }
+
+  bool valid() const { return !(zero[0] && zero[1] && zero[2]) && all_finite(org) && all_finite(dir); }
+
+  // Monotone widening of a box's far distance: every decision "does the ray meet box B"
+  // uses tn(B) <= widen(tf(B)); monotone in tf, so a box containing another never fails
+  // where the inner one passes.
+  T widen(T tf) const {
+    constexpr T k = T(1) / T(1 << 20);
+    const T scaled = tf >= T(0) ? tf * (T(1) + k) : tf * (T(1) - k);
+    return scaled + pad;
+  }
+};
+
+}  // namespace pierce

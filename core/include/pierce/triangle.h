@@ -1,0 +1,96 @@
+#pragma once
+// Watertight ray/triangle test (Woop, Benthin, Wald 2013) with a symbolic tie rule:
+// edge functions that are exactly zero are decided as if the ray passed through the
+// point (eps, eps^2) of the sheared plane. That point lies on no edge line, so a ray
+// through a shared edge or vertex of a consistently meshed surface crosses exactly one
+// of the triangles around it, whatever their winding.
+#include <cstdint>
+
+#include "pierce/slab.h"
+#include "pierce/traversal_ray.h"
+
+namespace pierce {
+
+template <typename T>
+struct Triangle {
+  Vec3<T> v0, v1, v2;
+  std::uint32_t geom, prim;
+};
+
+template <typename T>
+struct TriangleHit {
+  T t;
+  T u, v;      // barycentric weights of v1 and v2
+  bool enter;  // direction against (v1-v0)x(v2-v0)
+};
+
+namespace detail {
+
+// Sign of the edge function E = p.x*q.y - p.y*q.x at the perturbed point; e is E at the origin.
+template <typename W, typename T>
+inline int perturbed_sign(W e, T px, T py, T qx, T qy) {
+  if (e > W(0)) return 1;
+  if (e < W(0)) return -1;
+  // E(eps, eps^2) = eps*(p.y - q.y) + eps^2*(q.x - p.x); float differences have exact signs.
+  if (py != qy) return py > qy ? 1 : -1;
+  if (qx != px) return qx > px ? 1 : -1;
+  return 0;
+}
+
+}  // namespace detail
+
+// Returns true and fills `out` on a hit with t in [tlo, thi]. The reported t is clamped into
+// the triangle's own slab interval so that every box containing the triangle contains t.
+template <typename T>
+inline bool intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const Vec3<T>& p1, const Vec3<T>& p2, T tlo,
+                      T thi, TriangleHit<T>& out) {
+  const Vec3<T> a = p0 - r.org, b = p1 - r.org, c = p2 - r.org;
+  const T ax = a[r.kx] - r.sx * a[r.kz], ay = a[r.ky] - r.sy * a[r.kz];
+  const T bx = b[r.kx] - r.sx * b[r.kz], by = b[r.ky] - r.sy * b[r.kz];
+  const T cx = c[r.kx] - r.sx * c[r.kz], cy = c[r.ky] - r.sy * c[r.kz];
+
+  T U = cx * by - cy * bx;
+  T V = ax * cy - ay * cx;
+  T W = bx * ay - by * ax;
+  int su, sv, sw;
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (U == T(0) || V == T(0) || W == T(0)) {
+      // Products of floats are exact in double: the sign of each edge function becomes exact.
+      const double Ud = double(cx) * double(by) - double(cy) * double(bx);
+      const double Vd = double(ax) * double(cy) - double(ay) * double(cx);
+      const double Wd = double(bx) * double(ay) - double(by) * double(ax);
+      su = detail::perturbed_sign(Ud, cx, cy, bx, by);
+      sv = detail::perturbed_sign(Vd, ax, ay, cx, cy);
+      sw = detail::perturbed_sign(Wd, bx, by, ax, ay);
+      U = T(Ud), V = T(Vd), W = T(Wd);
+    } else {
+      su = U > T(0) ? 1 : -1, sv = V > T(0) ? 1 : -1, sw = W > T(0) ? 1 : -1;
+    }
+  } else {
+    su = detail::perturbed_sign(U, cx, cy, bx, by);
+    sv = detail::perturbed_sign(V, ax, ay, cx, cy);
+    sw = detail::perturbed_sign(W, bx, by, ax, ay);
+  }
+  if (su == 0 || su != sv || su != sw) return false;
+
+  const T det = U + V + W;
+  if (det == T(0)) return false;  // ray lies in the triangle's plane
+  const T az = r.sz * a[r.kz], bz = r.sz * b[r.kz], cz = r.sz * c[r.kz];
+  const T tnum = U * az + V * bz + W * cz;
+  T t = tnum / det;
+
+  const Span<T> box = slab(r, vmin(vmin(p0, p1), p2), vmax(vmax(p0, p1), p2));
+  const T wf = r.widen(box.tf);
+  if (box.tn > wf) return false;  // keeps "triangle hit" implying "every enclosing box hit"
+  t = t < box.tn ? box.tn : (t > wf ? wf : t);
+  if (!(t >= tlo && t <= thi)) return false;
+
+  const T inv_det = T(1) / det;
+  out.t = t;
+  out.u = V * inv_det;
+  out.v = W * inv_det;
+  out.enter = det > T(0);
+  return true;
+}
+
+}  // namespace pierce

@@ -1,0 +1,91 @@
+#include "pierce/embree_accel.h"
+
+#include "pierce/kernels/embree_query.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace pierce {
+
+namespace {
+
+void check(RTCDevice device, const char* what) {
+  const RTCError e = rtcGetDeviceError(device);
+  if (e != RTC_ERROR_NONE) throw std::runtime_error(std::string("Embree error ") + std::to_string(int(e)) + " in " + what);
+}
+
+struct BoundsData {
+  const std::vector<Triangle<float>>* tris;
+  float pad;
+};
+
+void bounds_cb(const RTCBoundsFunctionArguments* args) {
+  const auto* d = static_cast<const BoundsData*>(args->geometryUserPtr);
+  const Triangle<float>& t = (*d->tris)[args->primID];
+  const Vec3f lo = vmin(vmin(t.v0, t.v1), t.v2), hi = vmax(vmax(t.v0, t.v1), t.v2);
+  RTCBounds* b = args->bounds_o;
+  b->lower_x = lo.x - d->pad, b->lower_y = lo.y - d->pad, b->lower_z = lo.z - d->pad;
+  b->upper_x = hi.x + d->pad, b->upper_y = hi.y + d->pad, b->upper_z = hi.z + d->pad;
+}
+
+void occluded_noop(const RTCOccludedFunctionNArguments*) {}
+
+}  // namespace
+
+EmbreeAccel::EmbreeAccel(const Scene& scene, const std::vector<Triangle<float>>& tris)
+    : scene_(&scene), tris_(&tris) {
+  device_ = rtcNewDevice("threads=0");
+  if (!device_) throw std::runtime_error("Embree: rtcNewDevice failed");
+  max_abs_ = scene.bounds().max_abs_coord();
+  // 2^-14 of the scene's magnitude: well above Embree's rounding in its box test for origins
+  // rebased near the scene, negligible for traversal cost.
+  pad_ = float(std::ldexp(std::max(max_abs_, 1e-30), -14));
+
+  exact_ = rtcNewScene(device_);
+  rtcSetSceneBuildQuality(exact_, RTC_BUILD_QUALITY_HIGH);
+  if (!tris.empty()) {
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(g, unsigned(tris.size()));
+    auto* data = new BoundsData{&tris, pad_};
+    rtcSetGeometryUserData(g, data);
+    rtcSetGeometryBoundsFunction(g, bounds_cb, nullptr);
+    rtcSetGeometryOccludedFunction(g, occluded_noop);
+    rtcSetGeometryIntersectFunction(g, detail::embree_exact_intersect);
+    bounds_data_ = data;
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(exact_, g);
+    rtcReleaseGeometry(g);
+  }
+  rtcCommitScene(exact_);
+  check(device_, "building the exact scene");
+
+  native_ = rtcNewScene(device_);
+  for (const Geometry& geo : scene.geometries()) {
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                          3 * sizeof(float), geo.vertices.size()));
+    for (std::size_t i = 0; i < geo.vertices.size(); ++i) {
+      v[3 * i] = float(geo.vertices[i].x), v[3 * i + 1] = float(geo.vertices[i].y),
+                v[3 * i + 2] = float(geo.vertices[i].z);
+    }
+    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                               3 * sizeof(unsigned), geo.triangles.size()));
+    for (std::size_t i = 0; i < geo.triangles.size(); ++i)
+      for (int k = 0; k < 3; ++k) idx[3 * i + k] = geo.triangles[i][k];
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(native_, g);  // ids 0, 1, ... match Pierce's geometry ids
+    rtcReleaseGeometry(g);
+  }
+  rtcCommitScene(native_);
+  check(device_, "building the native scene");
+}
+
+EmbreeAccel::~EmbreeAccel() {
+  if (exact_) rtcReleaseScene(exact_);
+  delete static_cast<BoundsData*>(bounds_data_);
+  if (native_) rtcReleaseScene(native_);
+  if (device_) rtcReleaseDevice(device_);
+}
+
+}  // namespace pierce

@@ -1,0 +1,248 @@
+#include "pierce/kernels/embree_kernels.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "pierce/kernels/bvh_common.h"
+
+namespace pierce {
+
+namespace detail {
+
+void embree_exact_intersect(const RTCIntersectFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  auto* q = reinterpret_cast<EmbreeQuery*>(args->context);
+  auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);  // rtcIntersect1: N == 1
+  const Triangle<float>& tri = (*q->tris)[args->primID];
+  PIERCE_COUNT(*q->counters, prim_tests, 1);
+  using Mode = EmbreeQuery::Mode;
+  const bool full = q->mode == Mode::closest_n && q->hits->size() == q->n;
+  float hi = q->hi;
+  if (q->mode == Mode::restart && q->best.valid()) hi = float(q->best.t);
+  if (full) hi = float(q->hits->front().t);
+  TriangleHit<float> th;
+  if (!intersect(q->ray, tri.v0, tri.v1, tri.v2, q->lo, hi, th)) return;
+  PIERCE_COUNT(*q->counters, valid_hits, 1);
+  const Hit key = order_key(tri, th);
+  if (q->have_last && !q->order.less(q->last, key)) return;
+  auto before = [q](const Hit& a, const Hit& b) { return q->order.less(a, b); };
+  switch (q->mode) {
+    case Mode::restart:
+      if (q->best.valid() && !q->order.less(key, q->best)) return;
+      q->best = make_hit(tri, th);
+      rh->ray.tfar = q->embree_far(q->best.t);
+      rh->hit.geomID = 0;
+      rh->hit.primID = args->primID;
+      return;
+    case Mode::all:
+      q->hits->push_back(make_hit(tri, th));
+      return;
+    case Mode::closest_n:
+      if (full) {
+        if (!q->order.less(key, q->hits->front())) return;
+        std::pop_heap(q->hits->begin(), q->hits->end(), before);
+        q->hits->pop_back();
+      }
+      q->hits->push_back(make_hit(tri, th));
+      std::push_heap(q->hits->begin(), q->hits->end(), before);
+      if (q->hits->size() == q->n) rh->ray.tfar = q->embree_far(q->hits->front().t);
+      return;
+  }
+}
+
+}  // namespace detail
+
+EmbreeExactBase::EmbreeExactBase(const EmbreeAccel& acc, HitOrder order, EmbreeQuery::Mode mode) : acc_(&acc) {
+  q_.mode = mode;
+  q_.order = order;
+  q_.tris = &acc.tris();
+  q_.counters = &counters;
+}
+
+bool EmbreeExactBase::setup(const Ray& ray) {
+  q_.ray = TraversalRay<float>::make(ray, acc_->scene_max_abs());
+  q_.have_last = false;
+  q_.best = Hit{};
+  live_ = false;
+  if (acc_->tris().empty() || !q_.ray.valid()) return false;
+  // Where the ray meets the (padded) scene box, in double: the Embree origin is moved there
+  // so Embree's single-precision box test works near the scene, whatever the user's origin.
+  const BBoxd& b = acc_->scene().bounds();
+  const double pad = double(acc_->box_pad());
+  double te = ray.tmin, tx = ray.tmax;
+  for (int a = 0; a < 3; ++a) {
+    const double lo = b.lo[a] - pad, hi = b.hi[a] + pad;
+    if (ray.dir[a] == 0.0) {
+      if (ray.org[a] < lo || ray.org[a] > hi) return false;
+      continue;
+    }
+    double t0 = (lo - ray.org[a]) / ray.dir[a], t1 = (hi - ray.org[a]) / ray.dir[a];
+    if (t0 > t1) std::swap(t0, t1);
+    te = std::max(te, t0), tx = std::min(tx, t1);
+  }
+  if (te > tx + q_.slack(tx)) return false;
+  const double dmax = max_abs(ray.dir);
+  const double span_t = acc_->scene().scale() / dmax;
+  q_.t_base = te - (std::ldexp(span_t, -12) + q_.slack(te));
+  org_ = ray.org + ray.dir * q_.t_base;
+  dir_ = ray.dir;
+  live_ = true;
+  return true;
+}
+
+void EmbreeExactBase::trace(double lo, double hi) {
+  RTCRayHit rh;
+  rh.ray.org_x = float(org_.x), rh.ray.org_y = float(org_.y), rh.ray.org_z = float(org_.z);
+  rh.ray.dir_x = float(dir_.x), rh.ray.dir_y = float(dir_.y), rh.ray.dir_z = float(dir_.z);
+  rh.ray.tnear = q_.embree_near(lo);
+  rh.ray.tfar = std::isinf(hi) ? std::numeric_limits<float>::infinity() : q_.embree_far(hi);
+  rh.ray.time = 0.f;
+  rh.ray.mask = 0xFFFFFFFFu;  // Debian's Embree is built with ray masks
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  q_.lo = float(lo);
+  q_.hi = float(hi);
+  rtcInitIntersectContext(&q_.ctx);
+  rtcIntersect1(acc_->exact(), &q_.ctx, &rh);
+  PIERCE_COUNT(counters, traversal_steps, 1);
+}
+
+void EmbreeRestartKernel::begin(const Ray& ray, std::size_t) { setup(ray); }
+
+bool EmbreeRestartKernel::next(Hit& out) {
+  if (!live_) return false;
+  q_.best = Hit{};
+  const double lo = q_.have_last ? std::max(double(q_.ray.tmin), q_.last.t) : double(q_.ray.tmin);
+  trace(lo, q_.ray.tmax);
+  if (!q_.best.valid()) {
+    live_ = false;
+    return false;
+  }
+  out = q_.last = q_.best;
+  q_.have_last = true;
+  return true;
+}
+
+void EmbreeFilterKernel::begin(const Ray& ray, std::size_t) {
+  hits_.clear();
+  pos_ = 0;
+  if (!setup(ray)) return;
+  q_.hits = &hits_;
+  trace(q_.ray.tmin, q_.ray.tmax);
+  std::sort(hits_.begin(), hits_.end(), q_.order);
+  // Embree may offer a primitive twice (e.g. spatial-split builds): keep one.
+  hits_.erase(std::unique(hits_.begin(), hits_.end(), same_hit), hits_.end());
+}
+
+bool EmbreeFilterKernel::next(Hit& out) {
+  if (pos_ >= hits_.size()) return false;
+  out = hits_[pos_++];
+  return true;
+}
+
+void EmbreeNodeCullKernel::begin(const Ray& ray, std::size_t max_hits) {
+  batch_.clear();
+  pos_ = 0;
+  exhausted_ = !setup(ray);
+  q_.n = max_hits == 0 ? std::numeric_limits<std::size_t>::max() : max_hits;
+  q_.hits = &batch_;
+}
+
+void EmbreeNodeCullKernel::collect() {
+  batch_.clear();
+  pos_ = 0;
+  const double lo = q_.have_last ? std::max(double(q_.ray.tmin), q_.last.t) : double(q_.ray.tmin);
+  trace(lo, q_.ray.tmax);
+  std::sort_heap(batch_.begin(), batch_.end(), q_.order);
+}
+
+bool EmbreeNodeCullKernel::next(Hit& out) {
+  if (pos_ == batch_.size()) {
+    if (exhausted_) return false;
+    collect();
+    if (batch_.size() < q_.n) exhausted_ = true;
+    if (batch_.empty()) return false;
+  }
+  out = q_.last = batch_[pos_++];
+  q_.have_last = true;
+  return true;
+}
+
+EpsilonKernel::EpsilonKernel(const EmbreeAccel& acc, double epsilon_rel)
+    : acc_(&acc), eps_(epsilon_rel * acc.scene().scale()) {}
+
+void EpsilonKernel::begin(const Ray& ray, std::size_t) {
+  ray_ = ray;
+  tnear_ = float(std::max(0.0, ray.tmin));
+  done_ = !all_finite(ray.org) || !all_finite(ray.dir) || max_abs(ray.dir) == 0.0;
+}
+
+bool EpsilonKernel::next(Hit& out) {
+  while (!done_) {
+    RTCRayHit rh;
+    rh.ray.org_x = float(ray_.org.x), rh.ray.org_y = float(ray_.org.y), rh.ray.org_z = float(ray_.org.z);
+    rh.ray.dir_x = float(ray_.dir.x), rh.ray.dir_y = float(ray_.dir.y), rh.ray.dir_z = float(ray_.dir.z);
+    rh.ray.tnear = tnear_;
+    rh.ray.tfar = float(ray_.tmax);
+    rh.ray.time = 0.f;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    rtcIntersect1(acc_->native(), &ctx, &rh);
+    PIERCE_COUNT(counters, traversal_steps, 1);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+      done_ = true;
+      return false;
+    }
+    const float t = rh.ray.tfar;
+    tnear_ = std::max(float(double(t) + eps_), std::nextafter(t, std::numeric_limits<float>::infinity()));
+    const Geometry& geo = acc_->scene().geometry(rh.hit.geomID);
+    if (geo.degenerate[rh.hit.primID]) continue;
+    const Tri& tr = geo.triangles[rh.hit.primID];
+    const Vec3f v0(geo.vertices[tr[0]]), v1(geo.vertices[tr[1]]), v2(geo.vertices[tr[2]]);
+    out = Hit{};
+    out.t = t;
+    out.geom = rh.hit.geomID;
+    out.prim = rh.hit.primID;
+    out.u = rh.hit.u;
+    out.v = rh.hit.v;
+    out.ng = cross(v1 - v0, v2 - v0);
+    out.enter = dot(Vec3d(out.ng), ray_.dir) < 0.0;
+    return true;
+  }
+  return false;
+}
+
+bool embree_first_hit(const EmbreeAccel& acc, const Ray& ray, Hit& out) {
+  RTCRayHit rh;
+  rh.ray.org_x = float(ray.org.x), rh.ray.org_y = float(ray.org.y), rh.ray.org_z = float(ray.org.z);
+  rh.ray.dir_x = float(ray.dir.x), rh.ray.dir_y = float(ray.dir.y), rh.ray.dir_z = float(ray.dir.z);
+  rh.ray.tnear = float(ray.tmin);
+  rh.ray.tfar = float(ray.tmax);
+  rh.ray.time = 0.f;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  rtcIntersect1(acc.native(), &ctx, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  out = Hit{};
+  out.t = rh.ray.tfar;
+  out.geom = rh.hit.geomID;
+  out.prim = rh.hit.primID;
+  out.u = rh.hit.u;
+  out.v = rh.hit.v;
+  return true;
+}
+
+}  // namespace pierce

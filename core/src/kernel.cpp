@@ -1,0 +1,91 @@
+#include "pierce/kernel.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+
+#include "pierce/bvh_builder.h"
+
+namespace pierce {
+
+namespace {
+constexpr std::pair<KernelKind, std::string_view> kNames[] = {
+    {KernelKind::epsilon, "epsilon"},
+    {KernelKind::embree_restart, "embree-restart"},
+    {KernelKind::embree_filter, "embree-filter"},
+    {KernelKind::embree_nodecull, "embree-nodecull"},
+    {KernelKind::restart, "restart"},
+    {KernelKind::queue, "queue"},
+    {KernelKind::nodecull, "nodecull"},
+    {KernelKind::filter, "filter"},
+    {KernelKind::buffered, "buffered"},
+};
+
+using Impl = std::variant<EpsilonKernel, EmbreeRestartKernel, EmbreeFilterKernel, EmbreeNodeCullKernel,
+                          RestartKernel<float>, QueueKernel<float>, NodeCullKernel<float>, AllHitsKernel<float>,
+                          BufferedKernel<float>>;
+
+Impl make_impl(const Accel& a, KernelKind kind, const KernelOptions& o) {
+  switch (kind) {
+    case KernelKind::epsilon: return EpsilonKernel(a.embree(), o.epsilon_rel);
+    case KernelKind::embree_restart: return EmbreeRestartKernel(a.embree(), o.order);
+    case KernelKind::embree_filter: return EmbreeFilterKernel(a.embree(), o.order);
+    case KernelKind::embree_nodecull: return EmbreeNodeCullKernel(a.embree(), o.order);
+    case KernelKind::restart: return RestartKernel<float>(a.bvh(), o.order);
+    case KernelKind::queue: return QueueKernel<float>(a.bvh(), o.order);
+    case KernelKind::nodecull: return NodeCullKernel<float>(a.bvh(), o.order);
+    case KernelKind::filter: return AllHitsKernel<float>(a.bvh(), o.order);
+    case KernelKind::buffered: return BufferedKernel<float>(a.bvh(), o.order);
+  }
+  return RestartKernel<float>(a.bvh(), o.order);
+}
+}  // namespace
+
+std::string_view kernel_name(KernelKind k) {
+  for (const auto& [kind, name] : kNames)
+    if (kind == k) return name;
+  return "?";
+}
+
+std::optional<KernelKind> parse_kernel(std::string_view name) {
+  for (const auto& [kind, n] : kNames)
+    if (n == name) return kind;
+  return std::nullopt;
+}
+
+Accel::Accel(const Scene& scene) : scene_(&scene), bvh_(build_bvh<float>(scene)) {
+  embree_ = std::make_unique<EmbreeAccel>(scene, bvh_.tris);
+}
+
+HitIterator::HitIterator(const Accel& accel, KernelKind kind, const KernelOptions& opts)
+    : kind_(kind), impl_(make_impl(accel, kind, opts)) {}
+
+void collect_hits(HitIterator& it, const Ray& ray, std::size_t max_hits, std::vector<Hit>& out) {
+  it.begin(ray, max_hits);
+  Hit h;
+  std::size_t n = 0;
+  while ((max_hits == 0 || n < max_hits) && it.next(h)) {
+    out.push_back(h);
+    ++n;
+  }
+}
+
+bool trace_batch(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays, std::size_t max_hits,
+                 std::vector<std::vector<Hit>>& result, const KernelOptions& opts,
+                 const std::function<bool(std::size_t)>& progress) {
+  result.assign(rays.size(), {});
+  tbb::enumerable_thread_specific<HitIterator> iters([&] { return HitIterator(accel, kind, opts); });
+  std::atomic<std::size_t> done{0};
+  std::atomic<bool> cancelled{false};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 256), [&](const auto& range) {
+    if (cancelled.load(std::memory_order_relaxed)) return;
+    HitIterator& it = iters.local();
+    for (std::size_t i = range.begin(); i != range.end(); ++i) collect_hits(it, rays[i], max_hits, result[i]);
+    const std::size_t d = done.fetch_add(range.size()) + range.size();
+    if (progress && !progress(d)) cancelled = true;
+  });
+  return !cancelled;
+}
+
+}  // namespace pierce
