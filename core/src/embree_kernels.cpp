@@ -8,6 +8,15 @@
 
 namespace pierce {
 
+namespace {
+// Embree asserts (and its math breaks down) beyond this magnitude of ray coordinates.
+constexpr double kEmbreeLarge = 1.8e18;
+
+bool embree_representable(const Vec3d& v) { return all_finite(v) && max_abs(v) < kEmbreeLarge; }
+// No t satisfies tmin <= t <= tmax.
+bool empty_range(const Ray& r) { return !(r.tmin <= r.tmax); }
+}  // namespace
+
 namespace detail {
 
 void embree_exact_intersect(const RTCIntersectFunctionNArguments* args) {
@@ -65,7 +74,7 @@ bool EmbreeExactBase::setup(const Ray& ray) {
   q_.have_last = false;
   q_.best = Hit{};
   live_ = false;
-  if (acc_->tris().empty() || !q_.ray.valid()) return false;
+  if (acc_->tris().empty() || !q_.ray.valid() || empty_range(ray)) return false;
   // Where the ray meets the (padded) scene box, in double: the Embree origin is moved there
   // so Embree's single-precision box test works near the scene, whatever the user's origin.
   const BBoxd& b = acc_->scene().bounds();
@@ -86,7 +95,12 @@ bool EmbreeExactBase::setup(const Ray& ray) {
   const double span_t = acc_->scene().scale() / dmax;
   q_.t_base = te - (std::ldexp(span_t, -12) + q_.slack(te));
   org_ = ray.org + ray.dir * q_.t_base;
-  dir_ = ray.dir;
+  // Embree sees the direction scaled by a power of two to magnitude ~1 (exact), so that any
+  // float direction is within its range; its t is scaled back in embree_near/far.
+  q_.t_scale = std::ldexp(1.0, std::ilogb(dmax));
+  dir_ = ray.dir * (1.0 / q_.t_scale);
+  // Rebased origins lie near the scene; a scene beyond Embree's range cannot be traced by it.
+  if (!embree_representable(org_)) return false;
   live_ = true;
   return true;
 }
@@ -177,7 +191,10 @@ EpsilonKernel::EpsilonKernel(const EmbreeAccel& acc, double epsilon_rel)
 void EpsilonKernel::begin(const Ray& ray, std::size_t) {
   ray_ = ray;
   tnear_ = float(std::max(0.0, ray.tmin));
-  done_ = !all_finite(ray.org) || !all_finite(ray.dir) || max_abs(ray.dir) == 0.0;
+  // Rays Embree cannot take (its ray.valid(): finite, |coordinates| < 1.8e18, no NaN range)
+  // get no hits; so do empty ranges.
+  done_ = !embree_representable(Vec3d(Vec3f(ray.org))) || !embree_representable(Vec3d(Vec3f(ray.dir))) ||
+          max_abs(Vec3f(ray.dir)) == 0.f || empty_range(ray) || std::isnan(float(ray.tmax));
 }
 
 bool EpsilonKernel::next(Hit& out) {
@@ -202,6 +219,10 @@ bool EpsilonKernel::next(Hit& out) {
       return false;
     }
     const float t = rh.ray.tfar;
+    if (!std::isfinite(t)) {  // a distance beyond float range (tiny direction): not representable
+      done_ = true;
+      return false;
+    }
     tnear_ = std::max(float(double(t) + eps_), std::nextafter(t, std::numeric_limits<float>::infinity()));
     const Geometry& geo = acc_->scene().geometry(rh.hit.geomID);
     if (geo.degenerate[rh.hit.primID]) continue;
@@ -221,10 +242,13 @@ bool EpsilonKernel::next(Hit& out) {
 }
 
 bool embree_first_hit(const EmbreeAccel& acc, const Ray& ray, Hit& out) {
+  if (!embree_representable(Vec3d(Vec3f(ray.org))) || !embree_representable(Vec3d(Vec3f(ray.dir))) ||
+      empty_range(ray) || ray.tmax < 0)
+    return false;
   RTCRayHit rh;
   rh.ray.org_x = float(ray.org.x), rh.ray.org_y = float(ray.org.y), rh.ray.org_z = float(ray.org.z);
   rh.ray.dir_x = float(ray.dir.x), rh.ray.dir_y = float(ray.dir.y), rh.ray.dir_z = float(ray.dir.z);
-  rh.ray.tnear = float(ray.tmin);
+  rh.ray.tnear = float(std::max(0.0, ray.tmin));
   rh.ray.tfar = float(ray.tmax);
   rh.ray.time = 0.f;
   rh.ray.mask = 0xFFFFFFFFu;

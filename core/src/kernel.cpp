@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <atomic>
+#include <mutex>
 
 #include "pierce/bvh_builder.h"
 
@@ -20,11 +21,17 @@ constexpr std::pair<KernelKind, std::string_view> kNames[] = {
     {KernelKind::nodecull, "nodecull"},
     {KernelKind::filter, "filter"},
     {KernelKind::buffered, "buffered"},
+    {KernelKind::restart_d, "restart-d"},
+    {KernelKind::queue_d, "queue-d"},
+    {KernelKind::nodecull_d, "nodecull-d"},
+    {KernelKind::filter_d, "filter-d"},
+    {KernelKind::buffered_d, "buffered-d"},
 };
 
 using Impl = std::variant<EpsilonKernel, EmbreeRestartKernel, EmbreeFilterKernel, EmbreeNodeCullKernel,
                           RestartKernel<float>, QueueKernel<float>, NodeCullKernel<float>, AllHitsKernel<float>,
-                          BufferedKernel<float>>;
+                          BufferedKernel<float>, RestartKernel<double>, QueueKernel<double>, NodeCullKernel<double>,
+                          AllHitsKernel<double>, BufferedKernel<double>>;
 
 Impl make_impl(const Accel& a, KernelKind kind, const KernelOptions& o) {
   switch (kind) {
@@ -37,6 +44,11 @@ Impl make_impl(const Accel& a, KernelKind kind, const KernelOptions& o) {
     case KernelKind::nodecull: return NodeCullKernel<float>(a.bvh(), o.order);
     case KernelKind::filter: return AllHitsKernel<float>(a.bvh(), o.order);
     case KernelKind::buffered: return BufferedKernel<float>(a.bvh(), o.order);
+    case KernelKind::restart_d: return RestartKernel<double>(a.bvh_double(), o.order);
+    case KernelKind::queue_d: return QueueKernel<double>(a.bvh_double(), o.order);
+    case KernelKind::nodecull_d: return NodeCullKernel<double>(a.bvh_double(), o.order);
+    case KernelKind::filter_d: return AllHitsKernel<double>(a.bvh_double(), o.order);
+    case KernelKind::buffered_d: return BufferedKernel<double>(a.bvh_double(), o.order);
   }
   return RestartKernel<float>(a.bvh(), o.order);
 }
@@ -48,14 +60,36 @@ std::string_view kernel_name(KernelKind k) {
   return "?";
 }
 
+int kernel_precision_bits(KernelKind k) {
+  switch (k) {
+    case KernelKind::restart_d:
+    case KernelKind::queue_d:
+    case KernelKind::nodecull_d:
+    case KernelKind::filter_d:
+    case KernelKind::buffered_d: return 53;
+    default: return 24;
+  }
+}
+
 std::optional<KernelKind> parse_kernel(std::string_view name) {
   for (const auto& [kind, n] : kNames)
     if (n == name) return kind;
   return std::nullopt;
 }
 
-Accel::Accel(const Scene& scene) : scene_(&scene), bvh_(build_bvh<float>(scene)) {
+struct Accel::LazyBvhd {
+  std::once_flag once;
+  Bvhd bvh;
+};
+
+Accel::Accel(const Scene& scene)
+    : scene_(&scene), bvh_(build_bvh<float>(scene)), bvhd_(std::make_shared<LazyBvhd>()) {
   embree_ = std::make_unique<EmbreeAccel>(scene, bvh_.tris);
+}
+
+const Bvhd& Accel::bvh_double() const {
+  std::call_once(bvhd_->once, [this] { bvhd_->bvh = build_bvh<double>(*scene_); });
+  return bvhd_->bvh;
 }
 
 HitIterator::HitIterator(const Accel& accel, KernelKind kind, const KernelOptions& opts)

@@ -28,6 +28,12 @@ enum class KernelKind {
   nodecull,
   filter,
   buffered,
+  // The same kernels on a double-precision BVH of the double input (built on first use).
+  restart_d,
+  queue_d,
+  nodecull_d,
+  filter_d,
+  buffered_d,
 };
 
 inline constexpr KernelKind kAllKernels[] = {
@@ -36,7 +42,14 @@ inline constexpr KernelKind kAllKernels[] = {
     KernelKind::nodecull, KernelKind::filter,         KernelKind::buffered,
 };
 
+// Not in kAllKernels: double precision answers for the double input, which can differ from
+// the float kernels' answers where the input is not representable in float.
+inline constexpr KernelKind kDoubleKernels[] = {KernelKind::restart_d, KernelKind::queue_d, KernelKind::nodecull_d,
+                                                KernelKind::filter_d, KernelKind::buffered_d};
+
 std::string_view kernel_name(KernelKind k);
+// Significand bits of the kernel's arithmetic: 24 (float) or 53 (double).
+int kernel_precision_bits(KernelKind k);
 std::optional<KernelKind> parse_kernel(std::string_view name);
 inline bool is_exact(KernelKind k) { return k != KernelKind::epsilon; }
 
@@ -53,11 +66,15 @@ class Accel {
   const Scene& scene() const { return *scene_; }
   const Bvhf& bvh() const { return bvh_; }
   const EmbreeAccel& embree() const { return *embree_; }
+  // Double-precision BVH, built on the first call (thread-safe); the *_d kernels use it.
+  const Bvhd& bvh_double() const;
 
  private:
+  struct LazyBvhd;
   const Scene* scene_;
   Bvhf bvh_;
   std::unique_ptr<EmbreeAccel> embree_;
+  std::shared_ptr<LazyBvhd> bvhd_;
 };
 
 // One kernel instance; reusable across rays (no allocation once warm). Not thread-safe:
@@ -79,7 +96,9 @@ class HitIterator {
  private:
   KernelKind kind_;
   std::variant<EpsilonKernel, EmbreeRestartKernel, EmbreeFilterKernel, EmbreeNodeCullKernel, RestartKernel<float>,
-               QueueKernel<float>, NodeCullKernel<float>, AllHitsKernel<float>, BufferedKernel<float>>
+               QueueKernel<float>, NodeCullKernel<float>, AllHitsKernel<float>, BufferedKernel<float>,
+               RestartKernel<double>, QueueKernel<double>, NodeCullKernel<double>, AllHitsKernel<double>,
+               BufferedKernel<double>>
       impl_;
 };
 

@@ -5,6 +5,7 @@
 // through a shared edge or vertex of a consistently meshed surface crosses exactly one
 // of the triangles around it, whatever their winding.
 #include <cstdint>
+#include <utility>
 
 #include "pierce/slab.h"
 #include "pierce/traversal_ray.h"
@@ -35,6 +36,13 @@ inline int perturbed_sign(W e, T px, T py, T qx, T qy) {
   if (py != qy) return py > qy ? 1 : -1;
   if (qx != px) return qx > px ? 1 : -1;
   return 0;
+}
+
+template <typename T>
+inline bool lex_less(const Vec3<T>& a, const Vec3<T>& b) {
+  if (a.x != b.x) return a.x < b.x;
+  if (a.y != b.y) return a.y < b.y;
+  return a.z < b.z;
 }
 
 }  // namespace detail
@@ -73,16 +81,31 @@ inline bool intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const Vec3<T>
   }
   if (su == 0 || su != sv || su != sw) return false;
 
-  const T det = U + V + W;
-  if (det == T(0)) return false;  // ray lies in the triangle's plane
   const T az = r.sz * a[r.kz], bz = r.sz * b[r.kz], cz = r.sz * c[r.kz];
-  const T tnum = U * az + V * bz + W * cz;
+  // Sum the per-vertex terms in an order fixed by the vertices' positions, not by their order in
+  // the triangle: two triangles over the same three points (a face shared by touching solids, a
+  // duplicated face, either winding) then get bit-identical det and t, since reordering or
+  // reversing the corners only permutes the terms and negates them exactly.
+  const T w[3] = {U, V, W}, z[3] = {az, bz, cz};
+  const Vec3<T>* p[3] = {&p0, &p1, &p2};
+  int o[3] = {0, 1, 2};
+  if (detail::lex_less(*p[o[1]], *p[o[0]])) std::swap(o[0], o[1]);
+  if (detail::lex_less(*p[o[2]], *p[o[1]])) std::swap(o[1], o[2]);
+  if (detail::lex_less(*p[o[1]], *p[o[0]])) std::swap(o[0], o[1]);
+  const T det = (w[o[0]] + w[o[1]]) + w[o[2]];
+  if (det == T(0)) return false;  // ray lies in the triangle's plane
+  const T tnum = (w[o[0]] * z[o[0]] + w[o[1]] * z[o[1]]) + w[o[2]] * z[o[2]];
   T t = tnum / det;
 
   const Span<T> box = slab(r, vmin(vmin(p0, p1), p2), vmax(vmax(p0, p1), p2));
   const T wf = r.widen(box.tf);
   if (box.tn > wf) return false;  // keeps "triangle hit" implying "every enclosing box hit"
-  t = t < box.tn ? box.tn : (t > wf ? wf : t);
+  // Clamp into [tn, max(tn, tf)], not up to the widened wf: a triangle perpendicular to an axis
+  // the ray is not parallel to has tn == tf, so every triangle in that plane (touching faces
+  // meshed differently) gets the same t, the slab value, and ties are then decided by the ids.
+  // max(tn, tf) <= wf, so every enclosing box still contains t.
+  const T t_hi = box.tf > box.tn ? box.tf : box.tn;
+  t = t < box.tn ? box.tn : (t > t_hi ? t_hi : t);
   if (!(t >= tlo && t <= thi)) return false;
 
   const T inv_det = T(1) / det;

@@ -4,7 +4,9 @@
 // fixed-size sorted buffer, and a buffered hit is released only once it is closer than
 // every node still on the stack (the overlapping nodes are "resolved"). When the buffer
 // overflows, the farthest hits are dropped and a later pass resumes after the last hit
-// released. Memory is bounded by the buffer; the caller can stop at any hit (early exit).
+// released; for the rest of the pass only hits ranking before the first one lost (the "cut")
+// are buffered, so nothing found after a release can overtake a dropped hit.
+// Memory is bounded by the buffer; the caller can stop at any hit (early exit).
 #include <array>
 #include <limits>
 #include <vector>
@@ -49,6 +51,7 @@ class BufferedKernel {
   void start_pass() {
     size_ = 0;
     truncated_ = false;
+    have_cut_ = false;
     stack_.clear();
     if (bvh_->empty() || !ray_.valid()) return;
     const Span<T> root = slab(ray_, bvh_->nodes[0].box.lo, bvh_->nodes[0].box.hi);
@@ -57,7 +60,20 @@ class BufferedKernel {
   }
 
   T lower() const { return have_last_ ? std::max(ray_.tmin, T(last_.t)) : ray_.tmin; }
-  T upper() const { return size_ == Capacity ? T(buf_[Capacity - 1].t) : ray_.tmax; }
+  T upper() const {
+    const T u = size_ == Capacity ? T(buf_[Capacity - 1].t) : ray_.tmax;
+    return have_cut_ && T(cut_.t) < u ? T(cut_.t) : u;
+  }
+  // A hit (or everything in a node, from `tn` on) left for a later pass.
+  void lose(const Hit& key) {
+    truncated_ = true;
+    if (!have_cut_ || order_.less(key, cut_)) cut_ = key, have_cut_ = true;
+  }
+  static Hit node_key(T tn) {  // ranks before every hit at t >= tn, under either tie policy
+    Hit h;
+    h.t = double(tn), h.geom = 0, h.prim = 0, h.enter = false;
+    return h;
+  }
   T stack_min_tn() const {
     T m = std::numeric_limits<T>::infinity();
     for (const auto& e : stack_) m = e.tn < m ? e.tn : m;
@@ -67,8 +83,8 @@ class BufferedKernel {
   void step() {
     const NodeEntry<T> e = stack_.back();
     stack_.pop_back();
-    if (e.tn > upper()) {  // everything in it would fall off the full buffer
-      truncated_ = true;
+    if (e.tn > upper()) {  // everything in it would fall off the full buffer or lie past the cut
+      lose(node_key(e.tn));
       return;
     }
     PIERCE_COUNT(counters, traversal_steps, 1);
@@ -77,7 +93,7 @@ class BufferedKernel {
       const T up = upper();
       visit_children(*bvh_, n, ray_, lower(), ray_.tmax, counters, [&](std::uint32_t c, T tn) {
         if (tn > up) {
-          truncated_ = true;  // skipped only because the buffer is full: needed by a later pass
+          lose(node_key(tn));  // skipped only because the buffer is full: needed by a later pass
         } else {
           stack_.push_back({tn, c});
         }
@@ -98,10 +114,12 @@ class BufferedKernel {
   }
 
   void insert(const Hit& key, const Triangle<T>& tri, const TriangleHit<T>& th) {
+    // At or past the cut it could be released before a lost hit that ranks first: a later pass finds it.
+    if (have_cut_ && !order_.less(key, cut_)) return;
     if (size_ == Capacity) {
-      truncated_ = true;
-      if (!order_.less(key, buf_[Capacity - 1])) return;
-      --size_;  // the farthest entry falls off
+      if (!order_.less(key, buf_[Capacity - 1])) return lose(key);
+      lose(buf_[Capacity - 1]);  // the farthest entry falls off
+      --size_;
     }
     std::size_t i = size_;
     while (i > 0 && order_.less(key, buf_[i - 1])) {
@@ -118,6 +136,8 @@ class BufferedKernel {
   std::array<Hit, Capacity> buf_{};
   std::size_t size_ = 0;
   bool truncated_ = false;
+  Hit cut_;  // first hit lost in this pass (by the tie order); buffered hits all rank before it
+  bool have_cut_ = false;
   Hit last_;
   bool have_last_ = false;
   std::vector<NodeEntry<T>> stack_;

@@ -20,7 +20,8 @@ struct EmbreeQuery {
   const std::vector<Triangle<float>>* tris = nullptr;
   TraversalRay<float> ray;
   HitOrder order;
-  double t_base = 0;  // Embree's t = Pierce's t - t_base
+  double t_base = 0;   // Embree's t = (Pierce's t - t_base) * t_scale
+  double t_scale = 1;  // power of two: Embree's direction is Pierce's / t_scale, of magnitude ~1
   float lo = 0, hi = 0;  // current range (Pierce's t)
   Hit last;
   bool have_last = false;
@@ -31,8 +32,8 @@ struct EmbreeQuery {
 
   // Embree-frame bounds around a Pierce-frame t, widened to absorb both sides' rounding.
   double slack(double t) const { return std::ldexp(std::abs(t), -18) + 4.0 * double(ray.pad); }
-  float embree_far(double t) const { return float(t + slack(t) - t_base); }
-  float embree_near(double t) const { return float(std::max(0.0, t - slack(t) - t_base)); }
+  float embree_far(double t) const { return float((t + slack(t) - t_base) * t_scale); }
+  float embree_near(double t) const { return float(std::max(0.0, (t - slack(t) - t_base) * t_scale)); }
 };
 
 namespace detail {

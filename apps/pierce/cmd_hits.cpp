@@ -1,0 +1,250 @@
+// `pierce hits MODEL... --rays RAYS --kernel K`: every hit of every ray, as CSV; with `--kernel all`,
+// a table comparing every kernel with the exact consensus.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "command.h"
+#include "hit_diff.h"
+#include "hits_csv.h"
+#include "interrupt.h"
+#include "output_file.h"
+#include "pierce/error.h"
+#include "pierce/io/mesh_io.h"
+#include "pierce/io/ray_source.h"
+#include "pierce/kernel.h"
+#include "progress.h"
+
+namespace pierce::cli {
+
+namespace {
+
+struct HitsOptions {
+  std::vector<std::string> models;
+  std::string rays;
+  std::string kernel;
+  std::size_t max_hits = 0;
+  std::string out;
+  bool force = false;
+  bool progress = false;
+};
+
+// Exit code when an exact kernel disagrees with the consensus.
+constexpr int kExitExactDisagreement = 3;
+
+using Results = std::vector<std::vector<Hit>>;
+
+int cancelled() {
+  std::cerr << "pierce: cancelled\n";
+  return kExitCancelled;
+}
+
+std::string kernel_list() {
+  std::string s;
+  for (KernelKind k : kAllKernels) s += std::string(kernel_name(k)) + ", ";
+  return s + "all";
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Runs one kernel over all rays with a progress bar; false if cancelled.
+bool trace(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays, const HitsOptions& o, Results& out,
+           double& secs) {
+  ProgressBar bar(std::string(kernel_name(kind)), rays.size(), o.progress);
+  const auto t0 = std::chrono::steady_clock::now();
+  const bool done = trace_batch(accel, kind, rays, o.max_hits, out, {}, [&](std::size_t n) { return bar.update(n); });
+  secs = seconds_since(t0);
+  bar.finish();
+  return done && !interrupted();
+}
+
+// Writes results as CSV to o.out (or stdout); false if cancelled.
+bool write_csv(const HitsOptions& o, std::size_t ray_count, const std::function<std::span<const Hit>(std::size_t)>& hits_of) {
+  OutputFile out(o.out, o.force);
+  if (!write_hits_csv(out.stream(), ray_count, hits_of, [] { return !interrupted(); })) return false;
+  out.commit();
+  return true;
+}
+
+int run_single(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays, const HitsOptions& o) {
+  Results results;
+  double secs = 0;
+  if (!trace(accel, kind, rays, o, results, secs)) return cancelled();
+  if (!write_csv(o, rays.size(), [&](std::size_t i) { return std::span<const Hit>(results[i]); })) return cancelled();
+  return 0;
+}
+
+struct Row {
+  KernelKind kind = KernelKind::restart;
+  double secs = 0;
+  std::size_t hits = 0;
+  HitDiff diff;
+};
+
+std::size_t count_hits(const Results& r) {
+  std::size_t n = 0;
+  for (const auto& l : r) n += l.size();
+  return n;
+}
+
+// Rays on which one exact kernel's lists differ from the reference kernel's, sorted by ray.
+using Deviations = std::vector<std::pair<std::size_t, std::vector<Hit>>>;
+
+const std::vector<Hit>* find_deviation(const Deviations& d, std::size_t ray) {
+  auto it = std::lower_bound(d.begin(), d.end(), ray, [](const auto& e, std::size_t r) { return e.first < r; });
+  return it != d.end() && it->first == ray ? &it->second : nullptr;
+}
+
+void print_table(const std::vector<Row>& rows, std::size_t ray_count) {
+  std::printf("%-16s %5s %9s %9s %10s %11s %8s %7s %10s %12s %9s\n", "kernel", "exact", "time(s)", "Mrays/s", "hits",
+              "rays-differ", "missing", "extra", "duplicated", "out-of-order", "t-differs");
+  for (const Row& r : rows) {
+    const double mrays = r.secs > 0 ? double(ray_count) / r.secs * 1e-6 : 0.0;
+    std::printf("%-16s %5s %9.3f %9.2f %10zu %11zu %8zu %7zu %10zu %12zu %9zu\n",
+                std::string(kernel_name(r.kind)).c_str(), is_exact(r.kind) ? "yes" : "no", r.secs, mrays, r.hits,
+                r.diff.rays_differ, r.diff.missing, r.diff.extra, r.diff.duplicated, r.diff.out_of_order,
+                r.diff.t_differs);
+  }
+}
+
+// Every kernel on the same rays. The consensus per ray is the list most exact kernels return.
+// Memory stays near two kernels' results: the first exact kernel's results are the reference,
+// later exact kernels keep only the rays where they deviate from it, and inexact kernels are
+// compared as soon as they finish.
+int run_all(const Accel& accel, const std::vector<Ray>& rays, const HitsOptions& o) {
+  std::vector<KernelKind> exact, inexact;
+  for (KernelKind k : kAllKernels) (is_exact(k) ? exact : inexact).push_back(k);
+  const std::size_t n = rays.size();
+  std::vector<Row> rows;
+  Results reference;
+  std::vector<Deviations> deviations(exact.size());
+  for (std::size_t e = 0; e < exact.size(); ++e) {
+    Results res;
+    Row row;
+    row.kind = exact[e];
+    if (!trace(accel, exact[e], rays, o, res, row.secs)) return cancelled();
+    row.hits = count_hits(res);
+    rows.push_back(row);
+    if (e == 0) {
+      reference = std::move(res);
+      continue;
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      if (!same_hits(reference[i], res[i])) deviations[e].emplace_back(i, std::move(res[i]));
+  }
+
+  // Consensus where some exact kernel deviates from the reference.
+  std::vector<std::size_t> contested;
+  for (const Deviations& d : deviations)
+    for (const auto& [ray, list] : d) contested.push_back(ray);
+  std::sort(contested.begin(), contested.end());
+  contested.erase(std::unique(contested.begin(), contested.end()), contested.end());
+  std::vector<std::pair<std::size_t, std::vector<Hit>>> overrides;  // consensus != reference, by ray
+  std::size_t no_majority = 0;
+  auto list_of = [&](std::size_t e, std::size_t ray) -> std::span<const Hit> {
+    const std::vector<Hit>* d = find_deviation(deviations[e], ray);
+    return d ? *d : reference[ray];
+  };
+  for (std::size_t ray : contested) {
+    std::vector<std::span<const Hit>> lists;
+    for (std::size_t e = 0; e < exact.size(); ++e) lists.push_back(list_of(e, ray));
+    bool majority = false;
+    const std::size_t winner = consensus_index(lists, majority);
+    no_majority += !majority;
+    if (!same_hits(lists[winner], reference[ray]))
+      overrides.emplace_back(ray, std::vector<Hit>(lists[winner].begin(), lists[winner].end()));
+  }
+  auto consensus = [&](std::size_t ray) -> std::span<const Hit> {
+    const std::vector<Hit>* c = find_deviation(overrides, ray);
+    return c ? *c : reference[ray];
+  };
+
+  // Exact kernels can only differ from the consensus on contested rays.
+  for (std::size_t e = 0; e < exact.size(); ++e) {
+    rows[e].diff.rays = n;
+    for (std::size_t ray : contested) {
+      HitDiff d;
+      diff_hits(consensus(ray), list_of(e, ray), d);
+      d.rays = 0;
+      rows[e].diff += d;
+    }
+  }
+  for (KernelKind k : inexact) {
+    Results res;
+    Row row;
+    row.kind = k;
+    if (!trace(accel, k, rays, o, res, row.secs)) return cancelled();
+    row.hits = count_hits(res);
+    for (std::size_t i = 0; i < n; ++i) diff_hits(consensus(i), res[i], row.diff);
+    rows.push_back(row);
+  }
+  std::sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) {
+    auto pos = [](KernelKind k) { return std::find(std::begin(kAllKernels), std::end(kAllKernels), k) - std::begin(kAllKernels); };
+    return pos(a.kind) < pos(b.kind);
+  });
+
+  std::size_t consensus_hits = count_hits(reference);
+  for (const auto& [ray, list] : overrides) consensus_hits += list.size() - reference[ray].size();
+  std::printf("%zu rays, exact consensus %zu hits (majority of %zu exact kernels)\n", n, consensus_hits, exact.size());
+  print_table(rows, n);
+  if (no_majority) std::printf("%zu rays have no majority among the exact kernels\n", no_majority);
+  std::string disagreeing;
+  for (const Row& r : rows)
+    if (is_exact(r.kind) && !r.diff.clean()) disagreeing += (disagreeing.empty() ? "" : ", ") + std::string(kernel_name(r.kind));
+  if (disagreeing.empty())
+    std::printf("all %zu exact kernels agree on all %zu rays\n", exact.size(), n);
+  else
+    std::printf("EXACT KERNELS DISAGREE: %s\n", disagreeing.c_str());
+  std::fflush(stdout);
+
+  if (!o.out.empty() && !write_csv(o, n, consensus)) return cancelled();
+  return disagreeing.empty() ? 0 : kExitExactDisagreement;
+}
+
+int run_hits(const HitsOptions& o) {
+  InterruptGuard guard;
+  const bool all = o.kernel == "all";
+  const std::optional<KernelKind> kind = parse_kernel(o.kernel);
+  if (!all && !kind) throw InputError("unknown kernel '" + o.kernel + "' (expected one of: " + kernel_list() + ")");
+  OutputFile::check_target(o.out, o.force);  // before any long work
+
+  Scene scene;
+  add_model_files(scene, o.models);
+  if (interrupted()) return cancelled();
+  const std::vector<Ray> rays = load_rays(o.rays, scene);
+  if (interrupted()) return cancelled();
+  const auto t0 = std::chrono::steady_clock::now();
+  const Accel accel(scene);
+  if (all)
+    std::printf("%zu geometries, %zu triangles (%zu degenerate); acceleration structures built in %.3f s\n",
+                scene.geometries().size(), scene.triangle_count(), scene.degenerate_count(), seconds_since(t0));
+  if (interrupted()) return cancelled();
+  return all ? run_all(accel, rays, o) : run_single(accel, *kind, rays, o);
+}
+
+}  // namespace
+
+std::function<int()> register_hits(CLI::App& app) {
+  auto opts = std::make_shared<HitsOptions>();
+  CLI::App* cmd = app.add_subcommand("hits", "Every surface each ray crosses, in order (CSV: ray,t,geom,prim,u,v,enter)");
+  cmd->add_option("models", opts->models,
+                  "Model files (STL, OBJ, OFF, PLY); geometry ids follow argument order, one per OBJ o/g group")
+      ->required();
+  cmd->add_option("--rays", opts->rays,
+                  "CSV file ox,oy,oz,dx,dy,dz[,tmin,tmax], or grid:axis=x|y|z,n=N[,dir=-], or random:n=N[,seed=S]")
+      ->required();
+  cmd->add_option("--kernel", opts->kernel, "Kernel: " + kernel_list())->required();
+  cmd->add_option("--max-hits", opts->max_hits, "At most N hits per ray (0 = all)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--out", opts->out, "Write the CSV here instead of stdout (with --kernel all: the consensus hits)");
+  cmd->add_flag("--force", opts->force, "Overwrite an existing --out file");
+  cmd->add_flag("--progress", opts->progress, "Show a progress bar on stderr even when it is not a terminal");
+  return [opts] { return run_hits(*opts); };
+}
+
+}  // namespace pierce::cli

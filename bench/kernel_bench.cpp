@@ -1,0 +1,573 @@
+// pierce_bench_kernels: the table of Wald et al. 2019, Fig. 3, for Pierce's kernels.
+// For each scene and kernel, the rays/s of getting the first N hits of every ray
+// (N = 1, 5, 15, all), on all cores, against Embree's native first hit as reference.
+// A benchmark, not a test: it reports, it never asserts a speed.
+#include <embree3/rtcore.h>
+#include <oneapi/tbb/version.h>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bench_scenes.h"
+#include "pierce/bvh_builder.h"
+#include "pierce/kernel.h"
+
+namespace pierce::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using nlohmann::json;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// ---------------------------------------------------------------- machine
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(line.find_first_not_of(" \t", colon + 1));
+    }
+  return "unknown";
+}
+
+std::string load_average() {
+  std::ifstream in("/proc/loadavg");
+  std::string a, b, c;
+  if (in >> a >> b >> c) return a + " " + b + " " + c;
+  return "unknown";
+}
+
+// ---------------------------------------------------------------- measuring
+
+// What a pass over the rays found: totals that do not depend on the thread schedule, so
+// every kernel's result can be compared with every other's.
+struct Tally {
+  std::uint64_t hits = 0;
+  std::uint64_t hash = 0;  // sum over rays of an order-sensitive hash of the ray's hit list
+  std::uint64_t rays_hit = 0;
+  std::uint64_t max_per_ray = 0;
+  Tally& operator+=(const Tally& o) {
+    hits += o.hits, hash += o.hash, rays_hit += o.rays_hit;
+    max_per_ray = std::max(max_per_ray, o.max_per_ray);
+    return *this;
+  }
+  bool operator==(const Tally&) const = default;
+};
+
+std::uint64_t mix(std::uint64_t x) {  // splitmix64 finaliser
+  x ^= x >> 30, x *= 0xbf58476d1ce4e5b9ULL;
+  x ^= x >> 27, x *= 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+template <typename HitRange>
+void tally_ray(Tally& t, const HitRange& hits) {
+  std::uint64_t h = 0x9e3779b97f4a7c15ULL;
+  for (const Hit& hit : hits) h = mix(h ^ ((std::uint64_t(hit.geom) << 32) | hit.prim));
+  t.hits += hits.size();
+  t.hash += hits.empty() ? 0 : h;
+  t.rays_hit += hits.empty() ? 0 : 1;
+  t.max_per_ray = std::max<std::uint64_t>(t.max_per_ray, hits.size());
+}
+
+struct Cell {
+  std::size_t max_hits = 0;  // 0 = all
+  std::vector<double> seconds;
+  double median_seconds = 0;
+  Tally tally;
+  bool deterministic = true;  // every repetition found the same hits
+  Counters counters;          // summed over the timed repetitions
+};
+
+struct Row {
+  std::string kernel;
+  bool exact = true;
+  bool reference = false;
+  std::optional<KernelKind> kind;  // empty for Embree's native first hit
+  std::vector<Cell> cells;
+};
+
+struct Settings {
+  std::vector<std::size_t> columns{1, 5, 15, 0};
+  int reps = 3;
+};
+
+// Warm up once on the first eighth of the rays, then time `reps` passes over all of them.
+template <typename Pass, typename CounterSum>
+Cell time_cell(std::size_t max_hits, std::size_t ray_count, int reps, Pass&& pass, CounterSum&& counter_sum) {
+  Cell c;
+  c.max_hits = max_hits;
+  pass(0, std::max<std::size_t>(1, ray_count / 8));
+  const Counters before = counter_sum();
+  for (int r = 0; r < reps; ++r) {
+    const auto t0 = Clock::now();
+    const Tally t = pass(0, ray_count);
+    c.seconds.push_back(seconds_since(t0));
+    if (r == 0) c.tally = t;
+    else if (!(t == c.tally)) c.deterministic = false;
+  }
+  const Counters after = counter_sum();
+  c.counters = {after.node_tests - before.node_tests, after.traversal_steps - before.traversal_steps,
+                after.prim_tests - before.prim_tests, after.valid_hits - before.valid_hits};
+  std::vector<double> s = c.seconds;
+  std::sort(s.begin(), s.end());
+  c.median_seconds = s[s.size() / 2];
+  return c;
+}
+
+constexpr std::size_t kGrain = 256;
+
+Row run_embree_first_hit(const Accel& accel, const std::vector<Ray>& rays, const Settings& st) {
+  Row row{"embree first hit", false, true, std::nullopt, {}};
+  auto pass = [&](std::size_t begin, std::size_t end) {
+    tbb::enumerable_thread_specific<Tally> local;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, kGrain), [&](const auto& range) {
+      Tally& t = local.local();
+      Hit h;
+      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+        const bool hit = embree_first_hit(accel.embree(), rays[i], h);
+        tally_ray(t, std::span<const Hit>(&h, hit ? 1 : 0));
+      }
+    });
+    return local.combine([](Tally a, const Tally& b) { return a += b; });
+  };
+  row.cells.push_back(time_cell(1, rays.size(), st.reps, pass, [] { return Counters{}; }));
+  return row;
+}
+
+Row run_kernel(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays, const Settings& st) {
+  Row row{std::string(kernel_name(kind)), is_exact(kind), false, kind, {}};
+  struct Worker {
+    HitIterator it;
+    std::vector<Hit> hits;
+  };
+  for (const std::size_t n : st.columns) {
+    // Fresh iterators per cell so the counters of one cell never mix with another's.
+    tbb::enumerable_thread_specific<Worker> workers([&] { return Worker{HitIterator(accel, kind), {}}; });
+    auto pass = [&](std::size_t begin, std::size_t end) {
+      tbb::enumerable_thread_specific<Tally> local;
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, kGrain), [&](const auto& range) {
+        Worker& w = workers.local();
+        Tally& t = local.local();
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+          w.hits.clear();
+          collect_hits(w.it, rays[i], n, w.hits);
+          tally_ray(t, w.hits);
+        }
+      });
+      return local.combine([](Tally a, const Tally& b) { return a += b; });
+    };
+    auto counter_sum = [&] {
+      Counters c;
+      for (const Worker& w : workers) c += w.it.counters();
+      return c;
+    };
+    row.cells.push_back(time_cell(n, rays.size(), st.reps, pass, counter_sum));
+  }
+  return row;
+}
+
+// ---------------------------------------------------------------- Embree build reference
+
+// Embree's own BVH over the scene's triangles, as embree_first_hit uses it (default build
+// quality), built alone so its time is not mixed with the exact kernels' user-geometry scene.
+double time_embree_native_build(const Scene& scene) {
+  RTCDevice device = rtcNewDevice("threads=0");
+  if (!device) throw std::runtime_error("Embree: rtcNewDevice failed");
+  const auto t0 = Clock::now();
+  RTCScene rs = rtcNewScene(device);
+  for (const Geometry& geo : scene.geometries()) {
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                          3 * sizeof(float), geo.vertices.size()));
+    for (std::size_t i = 0; i < geo.vertices.size(); ++i)
+      v[3 * i] = float(geo.vertices[i].x), v[3 * i + 1] = float(geo.vertices[i].y),
+      v[3 * i + 2] = float(geo.vertices[i].z);
+    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                               3 * sizeof(unsigned), geo.triangles.size()));
+    for (std::size_t i = 0; i < geo.triangles.size(); ++i)
+      for (int k = 0; k < 3; ++k) idx[3 * i + k] = geo.triangles[i][k];
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(rs, g);
+    rtcReleaseGeometry(g);
+  }
+  rtcCommitScene(rs);
+  const double s = seconds_since(t0);
+  const RTCError err = rtcGetDeviceError(device);
+  rtcReleaseScene(rs);
+  rtcReleaseDevice(device);
+  if (err != RTC_ERROR_NONE) throw std::runtime_error("Embree error " + std::to_string(int(err)) + " building");
+  return s;
+}
+
+// ---------------------------------------------------------------- printing
+
+std::string column_title(std::size_t n) { return n == 0 ? "all" : std::to_string(n) + (n == 1 ? " hit" : " hits"); }
+
+std::string fmt(const char* f, double x) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, x);
+  return buf;
+}
+
+constexpr std::size_t kNameWidth = 20;
+
+// `t` left-aligned in `w` columns (at least one space after it).
+std::string pad(const std::string& t, std::size_t w) { return t.size() < w ? t + std::string(w - t.size(), ' ') : t + " "; }
+
+double mrays_per_s(const Cell& c, std::size_t rays) { return double(rays) / c.median_seconds * 1e-6; }
+
+struct SceneResult {
+  const BenchScene* scene;
+  double pierce_bvh_s = 0, embree_native_s = 0, embree_accel_s = 0;
+  std::size_t bvh_nodes = 0;
+  std::vector<Row> rows;
+  double reference_mrays = 0;
+  std::optional<Tally> exact_all;  // the exact kernels' consensus for "all"
+  std::vector<std::string> problems;
+};
+
+// The exact kernels must agree on every column; the first exact row is the consensus.
+void check_agreement(SceneResult& r, const Settings& st) {
+  for (std::size_t c = 0; c < st.columns.size(); ++c) {
+    const Row* ref = nullptr;
+    for (const Row& row : r.rows) {
+      if (row.reference) continue;
+      const Cell& cell = row.cells[c];
+      if (!cell.deterministic)
+        r.problems.push_back(row.kernel + " (" + column_title(st.columns[c]) + "): repetitions found different hits");
+      if (!row.exact) continue;
+      if (!ref) {
+        ref = &row;
+        if (st.columns[c] == 0) r.exact_all = cell.tally;
+      } else if (!(cell.tally == ref->cells[c].tally)) {
+        r.problems.push_back(row.kernel + " (" + column_title(st.columns[c]) + ") disagrees with " + ref->kernel + ": " +
+                             std::to_string(cell.tally.hits) + " vs " + std::to_string(ref->cells[c].tally.hits) +
+                             " hits");
+      }
+    }
+  }
+  const long expected = r.scene->expected_hits_per_ray;
+  if (expected >= 0 && r.exact_all &&
+      r.exact_all->hits != std::uint64_t(expected) * r.scene->rays.size())
+    r.problems.push_back("exact kernels found " + std::to_string(r.exact_all->hits) + " hits, the construction has " +
+                         std::to_string(std::uint64_t(expected) * r.scene->rays.size()));
+}
+
+void print_scene(const SceneResult& r, const Settings& st) {
+  const BenchScene& s = *r.scene;
+  const std::size_t rays = s.rays.size();
+  std::cout << "\n== " << s.name << ": " << s.description << "\n";
+  std::cout << "triangles " << s.scene.triangle_count() << " in " << s.scene.geometries().size()
+            << " geometries; rays " << rays << "\n";
+  std::cout << "build: Pierce BVH (binned SAH, float) " << fmt("%.3f", r.pierce_bvh_s) << " s, " << r.bvh_nodes
+            << " nodes; Embree BVH (native triangles) " << fmt("%.3f", r.embree_native_s)
+            << " s; Embree scenes of the Embree kernels (exact user geometry + native) "
+            << fmt("%.3f", r.embree_accel_s) << " s\n";
+  if (r.exact_all) {
+    std::cout << "hits per ray (exact kernels, all): mean " << fmt("%.2f", double(r.exact_all->hits) / double(rays))
+              << ", max " << r.exact_all->max_per_ray << ", rays with a hit " << r.exact_all->rays_hit;
+    if (s.expected_hits_per_ray >= 0) std::cout << " (construction: " << s.expected_hits_per_ray << " per ray)";
+    std::cout << "\n";
+  }
+  std::cout << "cells: M rays/s (median of " << st.reps << ") getting the first N hits of every ray; x ref = "
+            << "ratio to Embree first hit (" << fmt("%.3f", r.reference_mrays) << " M rays/s)\n\n";
+
+  std::cout << std::string(kNameWidth, ' ');
+  for (const std::size_t n : st.columns) std::cout << "  " << pad(column_title(n), 15);
+  std::cout << "  hits/ray\n" << std::string(kNameWidth, ' ');
+  for (std::size_t i = 0; i < st.columns.size(); ++i) std::cout << "  Mrays/s  x ref ";
+  std::cout << "  (all)\n";
+  for (const Row& row : r.rows) {
+    std::string name = row.kernel;
+    if (!row.exact && !row.reference) name += " *";
+    if (row.kind == KernelKind::nodecull || row.kind == KernelKind::embree_nodecull) name += " (N)";
+    std::cout << pad(name, kNameWidth);
+    for (std::size_t c = 0; c < st.columns.size(); ++c) {
+      const auto it = std::find_if(row.cells.begin(), row.cells.end(),
+                                   [&](const Cell& cell) { return cell.max_hits == st.columns[c]; });
+      if (it == row.cells.end()) {
+        std::cout << "        -        ";
+        continue;
+      }
+      const double m = mrays_per_s(*it, rays);
+      std::cout << "  " << fmt("%7.3f", m) << "  " << fmt("%5.2f", m / r.reference_mrays) << " ";
+    }
+    if (row.reference) std::cout << "\n";
+    else std::cout << "  " << fmt("%7.2f", double(row.cells.back().tally.hits) / double(rays)) << "\n";
+  }
+  std::cout << "\n(N) node culling gets max_hits = N as a hint; in \"all\" it has none.\n"
+            << "*   inexact (epsilon relaunch): misses or repeats hits, shown only for its cost.\n";
+  for (const Row& row : r.rows)
+    if (!row.exact && !row.reference && r.exact_all)
+      std::cout << "    " << row.kernel << " found " << row.cells.back().tally.hits << " hits in \"all\", the exact "
+                << "kernels " << r.exact_all->hits << ".\n";
+  for (const Row& row : r.rows)
+    if (row.reference) {
+      std::cout << "    Embree first hit hit " << row.cells[0].tally.rays_hit << " rays";
+      for (const Row& e : r.rows)
+        if (e.exact && !e.cells.empty() && e.cells[0].max_hits == 1) {
+          std::cout << ", the exact kernels " << e.cells[0].tally.rays_hit;
+          break;
+        }
+      std::cout << ".\n";
+    }
+  if constexpr (kCountersEnabled) {
+    std::cout << "\ncounters per ray (timed repetitions): node tests / traversal steps / primitive tests\n"
+              << "(embree-* and epsilon: Embree's node visits are not visible, their steps are rtcIntersect1 calls)\n"
+              << std::string(kNameWidth, ' ');
+    for (const std::size_t n : st.columns) {
+      std::cout << "  " << pad(column_title(n), 24);
+    }
+    std::cout << "\n";
+    for (const Row& row : r.rows) {
+      if (row.reference) continue;
+      std::cout << pad(row.kernel, kNameWidth);
+      for (const Cell& c : row.cells) {
+        const double per = 1.0 / (double(rays) * double(c.seconds.size()));
+        std::string t = fmt("%.1f", double(c.counters.node_tests) * per) + " / " +
+                        fmt("%.1f", double(c.counters.traversal_steps) * per) + " / " +
+                        fmt("%.1f", double(c.counters.prim_tests) * per);
+        std::cout << "  " << pad(t, 24);
+      }
+      std::cout << "\n";
+    }
+  }
+  for (const std::string& p : r.problems) std::cout << "WARNING: " << p << "\n";
+  std::cout.flush();
+}
+
+json scene_json(const SceneResult& r) {
+  const BenchScene& s = *r.scene;
+  const std::size_t rays = s.rays.size();
+  json j;
+  j["name"] = s.name;
+  j["description"] = s.description;
+  j["triangles"] = s.scene.triangle_count();
+  j["geometries"] = s.scene.geometries().size();
+  j["rays"] = rays;
+  j["build_seconds"] = {{"pierce_bvh", r.pierce_bvh_s},
+                        {"embree_native_bvh", r.embree_native_s},
+                        {"embree_kernel_scenes", r.embree_accel_s}};
+  j["pierce_bvh_nodes"] = r.bvh_nodes;
+  if (s.expected_hits_per_ray >= 0) j["expected_hits_per_ray"] = s.expected_hits_per_ray;
+  if (r.exact_all) {
+    j["hits_per_ray_all"] = {{"mean", double(r.exact_all->hits) / double(rays)},
+                             {"max", r.exact_all->max_per_ray},
+                             {"rays_with_a_hit", r.exact_all->rays_hit}};
+  }
+  j["reference_mrays_per_s"] = r.reference_mrays;
+  j["problems"] = r.problems;
+  json rows = json::array();
+  for (const Row& row : r.rows) {
+    json jr;
+    jr["kernel"] = row.kernel;
+    jr["exact"] = row.exact;
+    jr["reference"] = row.reference;
+    jr["gets_max_hits_hint"] = row.kind == KernelKind::nodecull || row.kind == KernelKind::embree_nodecull;
+    json cells = json::array();
+    for (const Cell& c : row.cells) {
+      const double m = mrays_per_s(c, rays);
+      json jc = {{"max_hits", c.max_hits == 0 ? json("all") : json(c.max_hits)},
+                 {"seconds", c.seconds},
+                 {"median_seconds", c.median_seconds},
+                 {"mrays_per_s", m},
+                 {"ratio_to_embree_first_hit", m / r.reference_mrays},
+                 {"hits", c.tally.hits},
+                 {"hits_per_ray", double(c.tally.hits) / double(rays)},
+                 {"max_hits_per_ray", c.tally.max_per_ray},
+                 {"rays_with_a_hit", c.tally.rays_hit},
+                 {"hit_hash", c.tally.hash},
+                 {"deterministic", c.deterministic}};
+      if (kCountersEnabled && !row.reference) {
+        const double per = 1.0 / (double(rays) * double(c.seconds.size()));
+        jc["counters_per_ray"] = {{"node_tests", double(c.counters.node_tests) * per},
+                                  {"traversal_steps", double(c.counters.traversal_steps) * per},
+                                  {"prim_tests", double(c.counters.prim_tests) * per},
+                                  {"valid_hits", double(c.counters.valid_hits) * per}};
+      }
+      cells.push_back(jc);
+    }
+    jr["cells"] = cells;
+    rows.push_back(jr);
+  }
+  j["rows"] = rows;
+  return j;
+}
+
+// ---------------------------------------------------------------- main
+
+constexpr KernelKind kRowOrder[] = {KernelKind::restart,  KernelKind::embree_restart, KernelKind::filter,
+                                    KernelKind::embree_filter, KernelKind::queue,   KernelKind::buffered,
+                                    KernelKind::nodecull, KernelKind::embree_nodecull, KernelKind::epsilon};
+
+SceneResult run_scene(const BenchScene& s, const std::vector<KernelKind>& kernels, const Settings& st) {
+  SceneResult r;
+  r.scene = &s;
+  std::cerr << "[" << s.name << "] building\n";
+  {
+    const auto t0 = Clock::now();
+    const Bvhf bvh = build_bvh<float>(s.scene);
+    r.pierce_bvh_s = seconds_since(t0);
+    r.bvh_nodes = bvh.nodes.size();
+    const auto t1 = Clock::now();
+    const EmbreeAccel embree(s.scene, bvh.tris);
+    r.embree_accel_s = seconds_since(t1);
+  }
+  r.embree_native_s = time_embree_native_build(s.scene);
+  const Accel accel(s.scene);
+
+  std::cerr << "[" << s.name << "] embree first hit\n";
+  r.rows.push_back(run_embree_first_hit(accel, s.rays, st));
+  r.reference_mrays = mrays_per_s(r.rows.back().cells[0], s.rays.size());
+  for (const KernelKind k : kernels) {
+    std::cerr << "[" << s.name << "] " << kernel_name(k) << "\n";
+    r.rows.push_back(run_kernel(accel, k, s.rays, st));
+  }
+  check_agreement(r, st);
+  return r;
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{"pierce_bench_kernels: rays/s of getting the first N hits per ray for every kernel "
+               "(the table of Wald et al. 2019, Fig. 3)"};
+  std::size_t ray_count = 200000;
+  std::string scene_choice = "all";
+  int threads = 0;
+  bool quick = false, force = false;
+  std::string json_path, kernel_list;
+  Settings st;
+  std::uint64_t seed = 1;
+  auto* rays_opt = app.add_option("--rays", ray_count, "rays per scene (default 200000; 2000 with --quick)")
+                       ->check(CLI::Range(std::size_t(1), std::size_t(100000000)));
+  app.add_option("--scene", scene_choice, "plates | hairball | blob | all")
+      ->check(CLI::IsMember({"plates", "hairball", "blob", "all"}));
+  app.add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+  app.add_flag("--quick", quick, "tiny scenes and rays, one repetition (smoke run)");
+  app.add_option("--json", json_path, "also write every number to this JSON file");
+  app.add_flag("--force", force, "overwrite the --json file if it exists");
+  auto* reps_opt = app.add_option("--reps", st.reps, "timed repetitions per cell, median reported (default 3)")
+                       ->check(CLI::Range(1, 100));
+  app.add_option("--kernels", kernel_list, "comma-separated kernel rows to run (default: all)");
+  app.add_option("--seed", seed, "seed of the scenes and rays (default 1)");
+  CLI11_PARSE(app, argc, argv);
+
+  std::vector<KernelKind> kernels;
+  if (kernel_list.empty()) {
+    kernels.assign(std::begin(kRowOrder), std::end(kRowOrder));
+  } else {
+    std::stringstream ss(kernel_list);
+    for (std::string name; std::getline(ss, name, ',');) {
+      const auto k = parse_kernel(name);
+      if (!k) {
+        std::cerr << "error: --kernels: unknown kernel '" << name << "' (known:";
+        for (const KernelKind kk : kRowOrder) std::cerr << " " << kernel_name(kk);
+        std::cerr << ")\n";
+        return 2;
+      }
+      if (std::find(kernels.begin(), kernels.end(), *k) == kernels.end()) kernels.push_back(*k);
+    }
+  }
+
+  // Open the JSON file before the long run so a bad path fails at once.
+  std::ofstream json_out;
+  if (!json_path.empty()) {
+    if (std::filesystem::exists(json_path) && !force) {
+      std::cerr << "error: --json " << json_path << " exists; pass --force to overwrite it\n";
+      return 2;
+    }
+    json_out.open(json_path, std::ios::trunc);
+    if (!json_out) {
+      std::cerr << "error: --json " << json_path << ": cannot open for writing\n";
+      return 2;
+    }
+  }
+
+  SceneSize size;
+  if (quick) {
+    size = {8, 5000, 0.05, 3};
+    if (rays_opt->count() == 0) ray_count = 2000;
+    if (reps_opt->count() == 0) st.reps = 1;
+  }
+  const int hw = int(std::thread::hardware_concurrency());
+  if (threads == 0) threads = tbb::info::default_concurrency();
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  const int threads_used = int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+
+  const std::string load_before = load_average();
+  std::cout << "pierce_bench_kernels — Wald et al. 2019 Fig. 3 style table\n"
+            << "machine: " << cpu_model() << ", " << hw << " hardware threads, " << threads_used << " used\n"
+            << "load average at start: " << load_before << "\n"
+            << "Embree " << RTC_VERSION_STRING << ", oneTBB " << TBB_VERSION_STRING << ", counters "
+            << (kCountersEnabled ? "on" : "off") << (quick ? ", --quick" : "") << "\n"
+            << "rays per scene " << ray_count << ", seed " << seed << ", " << st.reps
+            << " timed repetitions per cell (median) after a warm-up on 1/8 of the rays\n";
+
+  const auto start = Clock::now();
+  std::vector<std::unique_ptr<BenchScene>> scenes;
+  auto want = [&](const char* n) { return scene_choice == "all" || scene_choice == n; };
+  if (want("plates")) scenes.push_back(std::make_unique<BenchScene>(plates_scene(size.plate_layers, ray_count, seed)));
+  if (want("hairball"))
+    scenes.push_back(std::make_unique<BenchScene>(
+        hairball_scene(size.soup_triangles, size.soup_triangle_size, ray_count, seed)));
+  if (want("blob")) scenes.push_back(std::make_unique<BenchScene>(blob_scene(size.blob_subdivisions, ray_count, seed)));
+
+  json j;
+  j["machine"] = {{"cpu", cpu_model()},
+                  {"hardware_threads", hw},
+                  {"threads_used", threads_used},
+                  {"load_average_start", load_before}};
+  j["versions"] = {{"embree", RTC_VERSION_STRING}, {"tbb", TBB_VERSION_STRING}};
+  j["config"] = {{"rays", ray_count}, {"seed", seed},         {"reps", st.reps},
+                 {"quick", quick},    {"counters", kCountersEnabled}, {"warmup_fraction", 0.125}};
+  j["scenes"] = json::array();
+  for (const auto& s : scenes) {
+    const SceneResult r = run_scene(*s, kernels, st);
+    print_scene(r, st);
+    j["scenes"].push_back(scene_json(r));
+  }
+  const double total = seconds_since(start);
+  const std::string load_after = load_average();
+  j["machine"]["load_average_end"] = load_after;
+  j["total_seconds"] = total;
+  std::cout << "\ntotal " << fmt("%.1f", total) << " s; load average at end: " << load_after << "\n";
+
+  if (json_out.is_open()) {
+    json_out << j.dump(2) << "\n";
+    if (!json_out) {
+      std::cerr << "error: --json " << json_path << ": write failed\n";
+      return 1;
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+}  // namespace pierce::bench
+
+int main(int argc, char** argv) {
+  try {
+    return pierce::bench::run(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
+}

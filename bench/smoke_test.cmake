@@ -1,0 +1,20 @@
+# Runs pierce_bench_kernels --quick and checks only that it exits 0 and writes valid JSON
+# with one result per scene. Usage: cmake -DBENCH=<exe> -DOUT=<json> -P smoke_test.cmake
+file(REMOVE "${OUT}")
+execute_process(COMMAND "${BENCH}" --quick --threads 2 --json "${OUT}"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "pierce_bench_kernels --quick exited with ${rc}\n${out}\n${err}")
+endif()
+if(NOT EXISTS "${OUT}")
+  message(FATAL_ERROR "pierce_bench_kernels --quick wrote no JSON file ${OUT}")
+endif()
+file(READ "${OUT}" text)
+string(JSON scenes ERROR_VARIABLE json_error LENGTH "${text}" scenes)
+if(json_error)
+  message(FATAL_ERROR "invalid JSON in ${OUT}: ${json_error}")
+endif()
+if(NOT scenes EQUAL 3)
+  message(FATAL_ERROR "expected 3 scenes in ${OUT}, found ${scenes}")
+endif()
+message(STATUS "pierce_bench_kernels --quick: exit 0, valid JSON with ${scenes} scenes")

@@ -1,0 +1,58 @@
+#pragma once
+// Proximity queries on Pierce's double-precision BVH: closest point on the triangles to a
+// query point, and enumeration of the triangles whose boxes overlap a query box.
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include "pierce/bvh.h"
+#include "pierce/hit.h"
+
+namespace pierce::analysis {
+
+// Closest point on triangle (a, b, c) to p (Ericson, Real-Time Collision Detection, 5.1.5).
+Vec3d closest_point_on_triangle(Vec3d p, Vec3d a, Vec3d b, Vec3d c);
+
+struct ClosestPoint {
+  double dist2 = std::numeric_limits<double>::infinity();
+  Vec3d point;
+  std::uint32_t geom = kInvalidId, prim = kInvalidId;
+  bool found() const { return prim != kInvalidId; }
+};
+
+// Nearest point to `q` on the BVH's triangles within squared distance `max_dist2`, skipping the
+// primitives listed in `exclude` (ids of Triangle::prim; small, searched linearly). `stack` is
+// scratch space reused between calls.
+ClosestPoint closest_point(const Bvhd& bvh, Vec3d q, double max_dist2, std::span<const std::uint32_t> exclude,
+                           std::vector<std::uint32_t>& stack);
+
+// Calls f(const Triangle<double>&) for every triangle whose box overlaps `box` (closed test).
+template <typename F>
+void for_each_overlapping(const Bvhd& bvh, const BBoxd& box, std::vector<std::uint32_t>& stack, F&& f) {
+  if (bvh.empty()) return;
+  auto overlaps = [&](const BBoxd& b) {
+    return b.lo.x <= box.hi.x && b.hi.x >= box.lo.x && b.lo.y <= box.hi.y && b.hi.y >= box.lo.y &&
+           b.lo.z <= box.hi.z && b.hi.z >= box.lo.z;
+  };
+  stack.clear();
+  stack.push_back(0);
+  while (!stack.empty()) {
+    const BvhNode<double>& n = bvh.nodes[stack.back()];
+    stack.pop_back();
+    if (!overlaps(n.box)) continue;
+    if (!n.is_leaf()) {
+      stack.push_back(n.first);
+      stack.push_back(n.first + 1);
+      continue;
+    }
+    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
+      const Triangle<double>& t = bvh.tris[i];
+      BBoxd tb;
+      tb.extend(t.v0), tb.extend(t.v1), tb.extend(t.v2);
+      if (overlaps(tb)) f(t);
+    }
+  }
+}
+
+}  // namespace pierce::analysis

@@ -1,0 +1,106 @@
+#pragma once
+// Wall-thickness maps on the solids of a scene, per vertex or per face.
+//
+//  - ray: from the sample point along the inward normal, the distance to where the ray leaves
+//    the solid it started in (exact kernels; other solids' hits are ignored, so a touching
+//    neighbour or a coincident face of another solid neither shortens nor lengthens it);
+//  - cone: k rays in a cone around the inward normal, aggregated as the shape diameter
+//    function of Shapira et al. 2008 (rays farther than one standard deviation from the median
+//    dropped, the rest averaged with weights 1/angle to the axis) or as their median;
+//  - sphere: diameter of the largest ball inside the solid touching the sample point
+//    (shrinking-ball iteration on closest-point queries, started from the ray thickness).
+//
+// Open meshes: a ray that finds no exit (or none within max_distance) gives NaN with status
+// no_exit, never a number.
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "pierce/analysis/progress.h"
+#include "pierce/analysis/statistics.h"
+#include "pierce/kernel.h"
+
+namespace pierce::analysis {
+
+enum class ThicknessMethod { ray, cone, sphere };
+enum class SampleAt { vertex, face };
+enum class ConeAggregate { shapira, median };
+
+struct ThicknessOptions {
+  ThicknessMethod method = ThicknessMethod::ray;
+  SampleAt per = SampleAt::vertex;
+  double max_distance = std::numeric_limits<double>::infinity();  // search no farther than this
+  double min_thickness = 0;     // thin flag: finite thickness < min_thickness
+  int cone_rays = 30;           // cone: rays per sample, including the axis
+  double cone_angle_deg = 120;  // cone: full opening angle
+  ConeAggregate cone_aggregate = ConeAggregate::shapira;
+  int sphere_max_iterations = 100;
+  // Crossings closer than this to the sample point (relative to the scene's size, see
+  // tie_distance()) belong to the surface the ray starts on and are skipped; crossings of the
+  // same solid closer together than this are treated as simultaneous.
+  double tie_tolerance_rel = 1e-6;
+  KernelKind kernel = KernelKind::queue;  // any exact kernel gives the same result
+  std::vector<std::uint32_t> solids;      // geometries to sample (all when empty); the others
+                                          // still take part as neighbours
+  std::vector<double> percentiles = kDefaultPercentiles;
+  int histogram_bins = 20;
+};
+
+enum class ThicknessStatus : std::uint8_t {
+  ok = 0,
+  no_exit = 1,    // the ray (or most cone rays) left through a hole or went beyond max_distance
+  no_normal = 2,  // degenerate face or vertex without a usable normal
+};
+
+struct SolidThickness {
+  std::uint32_t geom = 0;
+  std::string name;
+  std::size_t elements = 0, valid = 0, no_exit = 0, no_normal = 0, thin = 0;
+  Summary summary;  // over the valid thicknesses
+};
+
+// One entry per sampled element, geometry by geometry in the order of `solids` (or of the
+// scene), elements in the geometry's vertex or triangle order.
+struct ThicknessResult {
+  SampleAt per = SampleAt::vertex;
+  std::vector<std::uint32_t> solid;    // geometry id
+  std::vector<std::uint32_t> element;  // vertex or triangle index in its geometry
+  std::vector<Vec3d> point;            // sample point (vertex, or triangle centroid)
+  std::vector<Vec3d> normal;           // unit outward normal (zero where none)
+  std::vector<double> thickness;       // NaN where there is none
+  std::vector<std::uint8_t> thin;      // 1 where thickness < min_thickness
+  std::vector<ThicknessStatus> status;
+  std::vector<SolidThickness> solids;  // per-solid statistics
+  bool completed = true;               // false if cancelled (then the arrays are partial)
+
+  std::size_t size() const { return thickness.size(); }
+};
+
+// Distance below which crossings count as simultaneous / as the start surface.
+double tie_distance(const Scene& scene, double tie_tolerance_rel);
+
+// Throws std::invalid_argument on bad options (negative distances, cone_rays < 1, angle outside
+// (0, 180), a non-exact kernel, an unknown solid id).
+ThicknessResult compute_thickness(const Accel& accel, const ThicknessOptions& opts = {},
+                                  const Progress& progress = {});
+
+std::string_view method_name(ThicknessMethod m);
+std::string_view status_name(ThicknessStatus s);
+
+// Ray thickness of one sample: from `point` along the unit inward direction `dir`, the
+// distance to where the ray leaves geometry `geom` (NaN if it does not within max_distance).
+// `tie` is tie_distance(). The iterator must use TieOrder::leave_before_enter.
+double ray_exit_distance(HitIterator& it, std::uint32_t geom, Vec3d point, Vec3d dir, double max_distance,
+                         double tie);
+
+// The cone method's aggregate of (length, angle to the axis) pairs, at least one: lengths
+// farther than one standard deviation from the median are dropped; the rest are averaged with
+// weights 1/angle (angles below min_angle/2 weigh as min_angle/2), or their median is taken.
+double cone_aggregate(std::span<const std::pair<double, double>> length_angle, ConeAggregate how,
+                      double min_angle);
+
+}  // namespace pierce::analysis

@@ -1,0 +1,79 @@
+#include "pierce/analysis/bvh_query.h"
+
+#include <algorithm>
+
+namespace pierce::analysis {
+
+Vec3d closest_point_on_triangle(Vec3d p, Vec3d a, Vec3d b, Vec3d c) {
+  const Vec3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vec3d bp = p - b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
+  const Vec3d cp = p - c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  const double denom = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+namespace {
+double box_dist2(const BBoxd& b, Vec3d p) {
+  double d = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double e = p[k] < b.lo[k] ? b.lo[k] - p[k] : (p[k] > b.hi[k] ? p[k] - b.hi[k] : 0.0);
+    d += e * e;
+  }
+  return d;
+}
+}  // namespace
+
+ClosestPoint closest_point(const Bvhd& bvh, Vec3d q, double max_dist2, std::span<const std::uint32_t> exclude,
+                           std::vector<std::uint32_t>& stack) {
+  ClosestPoint best;
+  best.dist2 = max_dist2;
+  if (bvh.empty()) return best;
+  stack.clear();
+  stack.push_back(0);
+  while (!stack.empty()) {
+    const BvhNode<double>& n = bvh.nodes[stack.back()];
+    stack.pop_back();
+    if (box_dist2(n.box, q) > best.dist2) continue;
+    if (!n.is_leaf()) {
+      const std::uint32_t a = n.first, b = n.first + 1;
+      const double da = box_dist2(bvh.nodes[a].box, q), db = box_dist2(bvh.nodes[b].box, q);
+      // Push the farther child first so the nearer one is searched first.
+      if (da <= db) {
+        if (db <= best.dist2) stack.push_back(b);
+        if (da <= best.dist2) stack.push_back(a);
+      } else {
+        if (da <= best.dist2) stack.push_back(a);
+        if (db <= best.dist2) stack.push_back(b);
+      }
+      continue;
+    }
+    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
+      const Triangle<double>& t = bvh.tris[i];
+      if (std::find(exclude.begin(), exclude.end(), t.prim) != exclude.end()) continue;
+      const Vec3d c = closest_point_on_triangle(q, t.v0, t.v1, t.v2);
+      const Vec3d d = c - q;
+      const double d2 = dot(d, d);
+      if (d2 < best.dist2 || (d2 == best.dist2 && !best.found())) {
+        best.dist2 = d2;
+        best.point = c;
+        best.geom = t.geom;
+        best.prim = t.prim;
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace pierce::analysis

@@ -1,0 +1,476 @@
+#include "pierce/io/cad_io.h"
+
+// OpenCASCADE is built with signal conversion: with OSD::SetSignal's handlers installed, a crash
+// inside it (malformed STEP files can dereference null placements) jumps to the nearest
+// OCC_CATCH_SIGNALS and becomes a Standard_Failure.
+#ifndef OCC_CONVERT_SIGNALS
+#define OCC_CONVERT_SIGNALS
+#endif
+
+#include <BRepBndLib.hxx>
+#include <BRepMesh_IncrementalMesh.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <Bnd_Box.hxx>
+#include <IFSelect_ReturnStatus.hxx>
+#include <IGESCAFControl_Reader.hxx>
+#include <IGESControl_Reader.hxx>
+#include <Interface_Check.hxx>
+#include <Interface_CheckIterator.hxx>
+#include <Interface_InterfaceModel.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <OSD.hxx>
+#include <Poly_Triangulation.hxx>
+#include <STEPCAFControl_Reader.hxx>
+#include <STEPControl_Reader.hxx>
+#include <Standard_ErrorHandler.hxx>
+#include <Standard_Failure.hxx>
+#include <TDF_Label.hxx>
+#include <TDF_LabelSequence.hxx>
+#include <TDataStd_Name.hxx>
+#include <TDocStd_Document.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopLoc_Location.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Shape.hxx>
+#include <XCAFApp_Application.hxx>
+#include <XCAFDoc_DocumentTool.hxx>
+#include <XCAFDoc_ShapeTool.hxx>
+#include <XSControl_TransferReader.hxx>
+#include <XSControl_WorkSession.hxx>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <csignal>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <tuple>
+#include <numbers>
+
+#include "pierce/error.h"
+
+namespace pierce {
+
+namespace {
+
+constexpr std::size_t kMaxListedProblems = 10;
+constexpr std::uint32_t kInvalidIndex = ~std::uint32_t(0);
+
+enum class CadFormat { step, iges, brep, unknown };
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+CadFormat format_of(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  if (ext == ".step" || ext == ".stp") return CadFormat::step;
+  if (ext == ".iges" || ext == ".igs") return CadFormat::iges;
+  if (ext == ".brep" || ext == ".brp") return CadFormat::brep;
+  return CadFormat::unknown;
+}
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) { throw InputError(path + ": " + what); }
+
+std::string label_name(const TDF_Label& label) {
+  Handle(TDataStd_Name) n;
+  if (label.IsNull() || !label.FindAttribute(TDataStd_Name::GetID(), n)) return {};
+  return TCollection_AsciiString(n->Get()).ToCString();  // UTF-8
+}
+
+std::string status_text(IFSelect_ReturnStatus s) {
+  switch (s) {
+    case IFSelect_RetVoid: return "no data found";
+    case IFSelect_RetError: return "file could not be parsed";
+    case IFSelect_RetFail: return "reading failed";
+    case IFSelect_RetStop: return "reading stopped";
+    default: return "unknown reader status";
+  }
+}
+
+// Collects solids as meshes, with the problems met on the way.
+class Collector {
+ public:
+  Collector(std::string path, std::string stem) : path_(std::move(path)), stem_(std::move(stem)) {}
+
+  // `proto` is the unlocated shape whose sub-shapes may carry names (XDE); `loc` places it.
+  void add(const TopoDS_Shape& proto, const TopLoc_Location& loc, const std::string& name,
+           const Handle(XCAFDoc_ShapeTool) & tool, const TDF_Label& label) {
+    const std::string base = name.empty() ? stem_ : name;
+    bool any = false;
+    for (TopExp_Explorer ex(proto, TopAbs_SOLID); ex.More(); ex.Next()) {
+      std::string n = base;
+      TDF_Label sub;
+      if (!tool.IsNull() && !label.IsNull() && tool->FindSubShape(label, ex.Current(), sub)) {
+        const std::string sn = label_name(sub);
+        if (!sn.empty()) n = base + "/" + sn;
+      }
+      mesh(ex.Current().Moved(loc), n, true);
+      any = true;
+    }
+    for (TopExp_Explorer ex(proto, TopAbs_SHELL, TopAbs_SOLID); ex.More(); ex.Next()) {
+      warn(base + ": a shell that is not a solid was loaded as a surface");
+      mesh(ex.Current().Moved(loc), base, false);
+      any = true;
+    }
+    // Faces outside shells (typical of IGES): one surface per shape.
+    TopoDS_Compound loose;
+    BRep_Builder b;
+    b.MakeCompound(loose);
+    std::size_t nloose = 0;
+    for (TopExp_Explorer ex(proto, TopAbs_FACE, TopAbs_SHELL); ex.More(); ex.Next()) b.Add(loose, ex.Current()), ++nloose;
+    if (nloose > 0) {
+      warn(base + ": " + std::to_string(nloose) + " faces outside any solid were loaded as one surface");
+      mesh(TopoDS_Shape(loose).Moved(loc), base, false);
+      any = true;
+    }
+    if (!any) warn(base + ": no surface (wires or points only), skipped");
+  }
+
+  void warn(std::string w) { warnings.push_back(std::move(w)); }
+
+  std::vector<CadSolid> solids;
+  std::vector<std::string> warnings;
+
+ private:
+  void mesh(const TopoDS_Shape& shape, const std::string& name, bool is_solid) {
+    CadSolid s;
+    s.name = name;
+    std::size_t unmeshed = 0;
+    for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
+      const TopoDS_Face& face = TopoDS::Face(ex.Current());
+      TopLoc_Location floc;
+      const Handle(Poly_Triangulation) tri = BRep_Tool::Triangulation(face, floc);
+      if (tri.IsNull() || tri->NbTriangles() == 0) {
+        ++unmeshed;
+        continue;
+      }
+      const gp_Trsf tr = floc.Transformation();
+      const auto base = std::uint32_t(s.vertices.size());
+      for (Standard_Integer i = 1; i <= tri->NbNodes(); ++i) {
+        const gp_Pnt p = tri->Node(i).Transformed(tr);
+        s.vertices.push_back({p.X(), p.Y(), p.Z()});
+      }
+      // Triangles follow the surface's parametric orientation; a reversed face's outside is the
+      // other side. A mirroring placement flips every face alike (fixed below by the volume).
+      const bool reversed = face.Orientation() == TopAbs_REVERSED;
+      for (Standard_Integer i = 1; i <= tri->NbTriangles(); ++i) {
+        Standard_Integer a, b, c;
+        tri->Triangle(i).Get(a, b, c);
+        if (reversed) std::swap(b, c);
+        s.triangles.push_back({base + std::uint32_t(a - 1), base + std::uint32_t(b - 1), base + std::uint32_t(c - 1)});
+      }
+    }
+    if (unmeshed > 0) warn(name + ": " + std::to_string(unmeshed) + " faces could not be tessellated, skipped");
+    if (s.triangles.empty()) {
+      warn(name + ": nothing to tessellate, skipped");
+      return;
+    }
+    weld(s);
+    if (is_solid && signed_volume(s) < 0) {
+      for (Tri& t : s.triangles) std::swap(t[1], t[2]);
+      warn(name + ": solid was inside out, turned right side out");
+    }
+    solids.push_back(std::move(s));
+  }
+
+  // Faces are meshed separately: nodes on a shared edge (and on a periodic face's seam, whose two
+  // sides are evaluated at parameters 0 and 2 pi) agree only up to rounding. Merging positions
+  // closer than `eps` makes the mesh topologically closed and keeps the kernels watertight
+  // there; triangles that collapse (at a sphere's poles) are dropped.
+  static void weld(CadSolid& s) {
+    BBoxd box;
+    for (const Vec3d& p : s.vertices) box.extend(p);
+    const double eps = 1e-9 * std::max(length(box.extent()), box.max_abs_coord());
+    if (!(eps > 0)) return;
+    struct Cell {
+      std::int64_t x, y, z;
+      bool operator<(const Cell& o) const { return std::tie(x, y, z) < std::tie(o.x, o.y, o.z); }
+    };
+    auto cell_of = [&](Vec3d p) {
+      return Cell{std::int64_t(std::floor(p.x / eps)), std::int64_t(std::floor(p.y / eps)),
+                  std::int64_t(std::floor(p.z / eps))};
+    };
+    std::map<Cell, std::vector<std::uint32_t>> grid;
+    std::vector<Vec3d> kept;
+    std::vector<std::uint32_t> index(s.vertices.size());
+    for (std::size_t i = 0; i < s.vertices.size(); ++i) {
+      const Vec3d p = s.vertices[i];
+      const Cell c = cell_of(p);
+      std::uint32_t found = kInvalidIndex;
+      for (std::int64_t dx = -1; dx <= 1 && found == kInvalidIndex; ++dx)
+        for (std::int64_t dy = -1; dy <= 1 && found == kInvalidIndex; ++dy)
+          for (std::int64_t dz = -1; dz <= 1 && found == kInvalidIndex; ++dz) {
+            const auto it = grid.find({c.x + dx, c.y + dy, c.z + dz});
+            if (it == grid.end()) continue;
+            for (std::uint32_t k : it->second)
+              if (max_abs(kept[k] - p) <= eps) {
+                found = k;
+                break;
+              }
+          }
+      if (found == kInvalidIndex) {
+        found = std::uint32_t(kept.size());
+        kept.push_back(p);
+        grid[c].push_back(found);
+      }
+      index[i] = found;
+    }
+    std::vector<Tri> tris;
+    for (Tri t : s.triangles) {
+      for (auto& k : t) k = index[k];
+      if (t[0] != t[1] && t[1] != t[2] && t[2] != t[0]) tris.push_back(t);
+    }
+    s.vertices = std::move(kept);
+    s.triangles = std::move(tris);
+  }
+
+  static double signed_volume(const CadSolid& s) {
+    BBoxd b;
+    for (const Vec3d& p : s.vertices) b.extend(p);
+    const Vec3d o = b.center();
+    double vol = 0;
+    for (const Tri& t : s.triangles)
+      vol += dot(s.vertices[t[0]] - o, cross(s.vertices[t[1]] - o, s.vertices[t[2]] - o));
+    return vol / 6.0;
+  }
+
+  std::string path_, stem_;
+};
+
+// Walks an XDE assembly tree: assemblies recurse with their components' placements, parts are
+// meshed. Names are the path of label names from the top.
+void walk(const Handle(XCAFDoc_ShapeTool) & tool, const TDF_Label& label, const TopLoc_Location& parent_loc,
+          const std::string& parent_path, Collector& out) {
+  TDF_Label proto = label;
+  TopLoc_Location loc = parent_loc;
+  if (XCAFDoc_ShapeTool::IsReference(label)) {
+    XCAFDoc_ShapeTool::GetReferredShape(label, proto);
+    loc = parent_loc * XCAFDoc_ShapeTool::GetLocation(label);
+  }
+  std::string name = label_name(proto);
+  if (name.empty()) name = label_name(label);
+  const std::string path = parent_path.empty() ? name : (name.empty() ? parent_path : parent_path + "/" + name);
+  if (XCAFDoc_ShapeTool::IsAssembly(proto)) {
+    TDF_LabelSequence comps;
+    XCAFDoc_ShapeTool::GetComponents(proto, comps);
+    for (Standard_Integer i = 1; i <= comps.Length(); ++i) walk(tool, comps.Value(i), loc, path, out);
+    return;
+  }
+  out.add(XCAFDoc_ShapeTool::GetShape(proto), loc, path, tool, proto);
+}
+
+double auto_deflection(const std::vector<TopoDS_Shape>& shapes) {
+  Bnd_Box box;
+  for (const TopoDS_Shape& s : shapes) BRepBndLib::Add(s, box);
+  if (box.IsVoid()) return 0.1;
+  const double d = std::sqrt(box.SquareExtent());
+  return d > 0 ? 1e-3 * d : 0.1;
+}
+
+void mesh_all(const std::vector<TopoDS_Shape>& shapes, const TessellationOptions& opts, CadModel& model) {
+  model.linear_deflection = opts.linear_deflection > 0 ? opts.linear_deflection : auto_deflection(shapes);
+  const double angle = opts.angular_deflection_deg * std::numbers::pi / 180.0;
+  for (const TopoDS_Shape& s : shapes) BRepMesh_IncrementalMesh(s, model.linear_deflection, false, angle, true);
+}
+
+// Load-time failures of individual entities ("skipped"), from the reader's check list.
+void report_checks(const Handle(XSControl_WorkSession) & ws, const std::string& what, CadModel& model) {
+  if (ws.IsNull()) return;
+  const Interface_CheckIterator checks = ws->ModelCheckList();
+  std::size_t failed = 0;
+  for (checks.Start(); checks.More(); checks.Next()) {
+    const Handle(Interface_Check)& c = checks.Value();
+    if (c.IsNull() || !c->HasFailed()) continue;
+    if (++failed <= kMaxListedProblems) {
+      const std::string msg = c->NbFails() > 0 ? std::string(c->CFail(1)) : std::string("unreadable");
+      model.warnings.push_back(checks.Number() > 0
+                                   ? what + " entity #" + std::to_string(checks.Number()) + " skipped: " + msg
+                                   : what + " file: " + msg);
+    }
+  }
+  if (failed > kMaxListedProblems)
+    model.warnings.push_back(std::to_string(failed - kMaxListedProblems) + " more " + what + " entities skipped");
+}
+
+// The plain reader under the XDE one (STEP wraps it, IGES derives from it).
+XSControl_Reader& plain_reader(STEPCAFControl_Reader& r) { return r.ChangeReader(); }
+XSControl_Reader& plain_reader(IGESCAFControl_Reader& r) { return r; }
+
+// STEP and IGES through XDE.
+template <typename Reader>
+void load_xde(const std::string& path, const char* what, const TessellationOptions& opts, CadModel& model,
+              Collector& out) {
+  Reader reader;
+  reader.SetNameMode(true);
+  reader.SetColorMode(false);
+  reader.SetLayerMode(false);
+  const IFSelect_ReturnStatus st = reader.ReadFile(path.c_str());
+  if (st != IFSelect_RetDone) fail(path, std::string("not a readable ") + what + " file (" + status_text(st) + ")");
+  const Handle(XSControl_WorkSession) ws = plain_reader(reader).WS();
+  report_checks(ws, what, model);
+  const Standard_Integer roots = reader.NbRootsForTransfer();
+  if (roots == 0) fail(path, std::string("no shape to load in this ") + what + " file");
+
+  Handle(TDocStd_Document) doc;
+  XCAFApp_Application::GetApplication()->NewDocument("MDTV-XCAF", doc);
+  struct Closer {
+    Handle(TDocStd_Document) & d;
+    ~Closer() {
+      if (!d.IsNull() && d->CanClose() == CDM_CCS_OK) XCAFApp_Application::GetApplication()->Close(d);
+    }
+  } closer{doc};
+  if (!reader.Transfer(doc)) fail(path, std::string("no shape could be converted from this ") + what + " file");
+  std::size_t untransferred = 0;
+  for (Standard_Integer i = 1; i <= roots; ++i) {
+    const Handle(Standard_Transient) root = plain_reader(reader).RootForTransfer(i);
+    if (root.IsNull() || ws->TransferReader()->HasResult(root)) continue;
+    if (++untransferred <= kMaxListedProblems)
+      model.warnings.push_back(std::string(what) + " entity #" + std::to_string(ws->Model()->Number(root)) + " (" +
+                               root->DynamicType()->Name() + ") could not be converted, skipped");
+  }
+  if (untransferred > kMaxListedProblems)
+    model.warnings.push_back(std::to_string(untransferred - kMaxListedProblems) + " more roots skipped");
+
+  const Handle(XCAFDoc_ShapeTool) tool = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
+  TDF_LabelSequence free;
+  tool->GetFreeShapes(free);
+  std::vector<TopoDS_Shape> shapes;
+  for (Standard_Integer i = 1; i <= free.Length(); ++i) shapes.push_back(XCAFDoc_ShapeTool::GetShape(free.Value(i)));
+  mesh_all(shapes, opts, model);
+  for (Standard_Integer i = 1; i <= free.Length(); ++i) walk(tool, free.Value(i), TopLoc_Location(), "", out);
+}
+
+void load_brep(const std::string& path, const TessellationOptions& opts, CadModel& model, Collector& out) {
+  TopoDS_Shape shape;
+  BRep_Builder builder;
+  if (!BRepTools::Read(shape, path.c_str(), builder) || shape.IsNull()) fail(path, "not a readable BREP file");
+  mesh_all({shape}, opts, model);
+  out.add(shape, TopLoc_Location(), "", Handle(XCAFDoc_ShapeTool)(), TDF_Label());
+}
+
+// Repeated names get "#2", "#3", ... in order.
+void make_names_unique(std::vector<CadSolid>& solids) {
+  std::map<std::string, int> seen;
+  for (CadSolid& s : solids) {
+    const int k = ++seen[s.name];
+    if (k > 1) s.name.append("#").append(std::to_string(k));
+  }
+}
+
+// While alive, OpenCASCADE's handlers catch crashes (SIGSEGV, SIGBUS, SIGILL, SIGFPE) so they
+// become exceptions; every other signal keeps the application's handler (Ctrl-C handling in
+// the CLI, Python, FreeCAD), and all handlers are restored afterwards.
+class CrashToException {
+ public:
+  CrashToException() {
+    for (int s = 1; s < kSignals; ++s) sigaction(s, nullptr, &saved_[std::size_t(s)]);
+    OSD::SetSignal(OSD_SignalMode_Set, Standard_False);
+    for (int s = 1; s < kSignals; ++s)
+      if (!converted(s)) sigaction(s, &saved_[std::size_t(s)], nullptr);
+  }
+  ~CrashToException() {
+    for (int s = 1; s < kSignals; ++s) sigaction(s, &saved_[std::size_t(s)], nullptr);
+  }
+  CrashToException(const CrashToException&) = delete;
+  CrashToException& operator=(const CrashToException&) = delete;
+
+ private:
+  static constexpr int kSignals = 32;
+  static bool converted(int s) { return s == SIGSEGV || s == SIGBUS || s == SIGILL || s == SIGFPE; }
+  std::array<struct sigaction, kSignals> saved_{};
+};
+
+// Runs f with OpenCASCADE failures and crashes turned into InputError naming the file.
+template <typename F>
+void guarded(const std::string& path, F&& f) {
+  try {
+    OCC_CATCH_SIGNALS
+    f();
+  } catch (const Standard_Failure& e) {
+    const char* msg = e.GetMessageString();
+    fail(path, std::string("OpenCASCADE failed on this file (") + e.DynamicType()->Name() +
+                   (msg && *msg ? std::string(": ") + msg : std::string()) + ")");
+  }
+}
+
+// Keeps OpenCASCADE's console messages (transfer statistics, parse errors) off stdout during a
+// load: problems reach the caller as warnings or errors instead.
+class QuietMessenger {
+ public:
+  QuietMessenger() : messenger_(Message::DefaultMessenger()) {
+    if (messenger_.IsNull()) return;
+    saved_ = messenger_->Printers();
+    messenger_->ChangePrinters().Clear();
+  }
+  ~QuietMessenger() {
+    if (!messenger_.IsNull()) messenger_->ChangePrinters() = saved_;
+  }
+  QuietMessenger(const QuietMessenger&) = delete;
+  QuietMessenger& operator=(const QuietMessenger&) = delete;
+
+ private:
+  Handle(Message_Messenger) messenger_;
+  Message_SequenceOfPrinters saved_;
+};
+
+// OpenCASCADE's XDE application and the signal handlers are process-wide: one load at a time.
+std::mutex& load_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+}  // namespace
+
+bool is_cad_file(const std::string& path) { return format_of(path) != CadFormat::unknown; }
+
+CadModel load_cad_file(const std::string& path, const TessellationOptions& opts) {
+  const CadFormat fmt = format_of(path);
+  if (fmt == CadFormat::unknown)
+    fail(path, "unknown CAD format '" + lower_extension(path) + "' (expected .step, .stp, .iges, .igs, .brep or .brp)");
+  if (!(opts.linear_deflection >= 0) || !std::isfinite(opts.linear_deflection))
+    throw InputError("tessellation: linear deflection must be a positive number (0 for automatic)");
+  if (!(opts.angular_deflection_deg > 0 && opts.angular_deflection_deg < 180))
+    throw InputError("tessellation: angular deflection must be in (0, 180) degrees");
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) fail(path, "cannot open file (no such file)");
+  if (!std::filesystem::is_regular_file(path, ec)) fail(path, "cannot read: not a regular file");
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail(path, "cannot open file");
+    if (in.peek() == std::ifstream::traits_type::eof()) fail(path, "file is empty");
+  }
+  CadModel model;
+  model.units = fmt == CadFormat::brep ? "model units" : "mm";
+  Collector out(path, std::filesystem::path(path).stem().string());
+  {
+    const std::lock_guard<std::mutex> lock(load_mutex());
+    const CrashToException crash_guard;
+    const QuietMessenger quiet;
+    guarded(path, [&] {
+      switch (fmt) {
+        case CadFormat::step: load_xde<STEPCAFControl_Reader>(path, "STEP", opts, model, out); break;
+        case CadFormat::iges: load_xde<IGESCAFControl_Reader>(path, "IGES", opts, model, out); break;
+        case CadFormat::brep: load_brep(path, opts, model, out); break;
+        case CadFormat::unknown: break;
+      }
+    });
+  }
+  model.solids = std::move(out.solids);
+  model.warnings.insert(model.warnings.end(), out.warnings.begin(), out.warnings.end());
+  if (model.solids.empty()) fail(path, "no solid or surface could be tessellated");
+  make_names_unique(model.solids);
+  return model;
+}
+
+}  // namespace pierce

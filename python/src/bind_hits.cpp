@@ -1,0 +1,94 @@
+// pierce._core.trace: every hit of many rays, as one structured array plus per-ray offsets.
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <limits>
+
+#include "common.h"
+#include "pierce/error.h"
+#include "progress.h"
+
+namespace pierce::py {
+
+namespace {
+
+// One row of the structured array returned by trace (numpy dtype "pierce hit").
+struct HitRecord {
+  std::uint32_t ray;
+  double t;
+  std::uint32_t geom;
+  std::uint32_t prim;
+  float u, v;
+  float ng[3];
+  bool enter;
+};
+
+}  // namespace
+
+KernelKind kernel_from_name(const std::string& name) {
+  if (auto k = parse_kernel(name)) return *k;
+  std::string known;
+  for (KernelKind k : kAllKernels) known += (known.empty() ? "" : ", ") + std::string(kernel_name(k));
+  throw pyb::value_error("unknown kernel '" + name + "' (known: " + known + ")");
+}
+
+TieOrder tie_from_name(const std::string& name) {
+  if (name == "geom_prim") return TieOrder::geom_prim;
+  if (name == "leave_before_enter") return TieOrder::leave_before_enter;
+  throw pyb::value_error("unknown order '" + name + "' (known: geom_prim, leave_before_enter)");
+}
+
+void bind_hits(pyb::module_& m) {
+  PYBIND11_NUMPY_DTYPE(HitRecord, ray, t, geom, prim, u, v, ng, enter);
+
+  m.def("kernels", [] {
+    std::vector<std::string> names;
+    for (KernelKind k : kAllKernels) names.emplace_back(kernel_name(k));
+    return names;
+  }, "Names of every kernel; all but 'epsilon' are exact.");
+  m.def("is_exact", [](const std::string& name) { return is_exact(kernel_from_name(name)); }, pyb::arg("kernel"));
+
+  m.def(
+      "trace",
+      [](PyScene& s, const pyb::handle& origins, const pyb::handle& directions, const pyb::handle& tmin,
+         const pyb::handle& tmax, const std::string& kernel, std::size_t max_hits, const std::string& order,
+         double epsilon_rel, const pyb::object& progress, CancelToken* cancel) {
+        const KernelKind kind = kernel_from_name(kernel);
+        KernelOptions opts;
+        opts.order.tie = tie_from_name(order);
+        opts.epsilon_rel = epsilon_rel;
+        const std::vector<Ray> rays = make_rays(origins, directions, tmin, tmax);
+        if (rays.size() > std::numeric_limits<std::uint32_t>::max())
+          throw pyb::value_error("trace: at most 2^32-1 rays per call");
+
+        std::vector<std::vector<Hit>> hits;
+        PyScene::Use use(s);
+        run_with_progress(progress, cancel, rays.size(), [&](ProgressState& st) {
+          const Accel& accel = s.accel();
+          trace_batch(accel, kind, rays, max_hits, hits, opts, [&](std::size_t done) { return st.report(done); });
+        });
+
+        std::size_t total = 0;
+        for (const auto& h : hits) total += h.size();
+        pyb::array_t<HitRecord> out(static_cast<pyb::ssize_t>(total));
+        pyb::array_t<std::int64_t> offsets(static_cast<pyb::ssize_t>(rays.size() + 1));
+        HitRecord* rec = out.mutable_data();
+        std::int64_t* off = offsets.mutable_data();
+        std::size_t k = 0;
+        for (std::size_t i = 0; i < hits.size(); ++i) {
+          off[i] = static_cast<std::int64_t>(k);
+          for (const Hit& h : hits[i])
+            rec[k++] = HitRecord{static_cast<std::uint32_t>(i), h.t, h.geom, h.prim, h.u, h.v,
+                                 {h.ng.x, h.ng.y, h.ng.z}, h.enter};
+        }
+        off[rays.size()] = static_cast<std::int64_t>(k);
+        return pyb::make_tuple(out, offsets);
+      },
+      pyb::arg("scene"), pyb::arg("origins"), pyb::arg("directions"), pyb::kw_only(), pyb::arg("tmin") = 0.0,
+      pyb::arg("tmax") = std::numeric_limits<double>::infinity(), pyb::arg("kernel") = "queue",
+      pyb::arg("max_hits") = 0, pyb::arg("order") = "geom_prim", pyb::arg("epsilon_rel") = 1e-5,
+      pyb::arg("progress") = pyb::none(), pyb::arg("cancel") = nullptr,
+      "Low-level: returns (hits, offsets); ray i's hits are hits[offsets[i]:offsets[i+1]].");
+}
+
+}  // namespace pierce::py

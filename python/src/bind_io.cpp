@@ -1,0 +1,89 @@
+// Loading models and ray sets from files.
+#include <pybind11/stl.h>
+
+#include "common.h"
+#include "pierce/generators.h"
+#include "pierce/io/mesh_io.h"
+#ifdef PIERCE_PY_WITH_CAD
+#include "pierce/io/model_io.h"
+#endif
+#include "pierce/io/ray_source.h"
+
+namespace pierce::py {
+
+void bind_io(pyb::module_& m) {
+  m.def(
+      "load_mesh",
+      [](const std::string& path) {
+        std::vector<LoadedMesh> loaded;
+        {
+          pyb::gil_scoped_release no_gil;
+          loaded = load_mesh_file(path);
+        }
+        std::vector<gen::Mesh> out;
+        for (auto& l : loaded) out.push_back({std::move(l.name), std::move(l.vertices), std::move(l.triangles)});
+        return out;
+      },
+      pyb::arg("path"),
+      "Meshes of one STL/OBJ/OFF/PLY file (several where the file holds several parts), as pierce.gen.Mesh.\n"
+      "Raises pierce.InputError 'path:line: problem' on a bad file.");
+
+  m.def(
+      "add_model_files",
+      [](PyScene& s, const std::vector<std::string>& paths, double linear_deflection, double angular_deflection) {
+        if (s.in_use()) throw std::runtime_error("add_model_files: the scene is in use by a running call");
+        // Everything is read into a scratch scene first: a bad file leaves the scene as it was.
+        Scene scratch;
+        pyb::list info;
+#ifdef PIERCE_PY_WITH_CAD
+        std::vector<LoadedFile> files;
+        {
+          pyb::gil_scoped_release no_gil;
+          TessellationOptions t;
+          t.linear_deflection = linear_deflection;
+          t.angular_deflection_deg = angular_deflection;
+          files = add_any_model(scratch, paths, t);
+        }
+        const auto first = static_cast<std::uint32_t>(s.scene.geometries().size());
+        for (const LoadedFile& f : files) {
+          pyb::dict d;
+          d["path"] = f.path;
+          d["geometries"] = pyb::make_tuple(first + f.first_geometry, f.geometry_count);
+          d["units"] = f.units;
+          d["linear_deflection"] = f.linear_deflection;
+          d["warnings"] = f.warnings;
+          info.append(d);
+        }
+#else
+        (void)linear_deflection, (void)angular_deflection;
+        {
+          pyb::gil_scoped_release no_gil;
+          add_model_files(scratch, paths);
+        }
+#endif
+        for (const Geometry& g : scratch.geometries()) s.scene.add_mesh(g.vertices, g.triangles, g.name, g.source);
+        s.invalidate_accel();
+        return info;
+      },
+      pyb::arg("scene"), pyb::arg("paths"), pyb::kw_only(), pyb::arg("linear_deflection") = 0.0,
+      pyb::arg("angular_deflection") = 15.0,
+      "Adds every solid of the files (STL/OBJ/OFF/PLY, and STEP/IGES/BREP when built with OpenCASCADE;\n"
+      "geometry source = path). CAD files are tessellated with linear_deflection (model units, 0 = 0.1% of\n"
+      "the diagonal) and angular_deflection (degrees). Returns per-file info (CAD builds) or [].");
+
+  m.attr("HAS_CAD") =
+#ifdef PIERCE_PY_WITH_CAD
+      true;
+#else
+      false;
+#endif
+
+  m.def(
+      "load_rays",
+      [](const std::string& spec, const PyScene& s) { return rays_to_arrays(load_rays(spec, s.scene)); },
+      pyb::arg("spec"), pyb::arg("scene"),
+      "Rays from a CSV file (ox,oy,oz,dx,dy,dz[,tmin,tmax]) or a generator ('grid:axis=z,n=64',\n"
+      "'random:n=1000,seed=1'): (origins, directions, tmin, tmax).");
+}
+
+}  // namespace pierce::py

@@ -1,0 +1,223 @@
+// Overlap diagnostics: coplanar triangle pairs, interference along rays, per-triangle heat maps.
+#include <pybind11/stl.h>
+
+#include <cstring>
+
+#include "common.h"
+#include "pierce/analysis/overlaps.h"
+#include "progress.h"
+
+namespace pierce::py {
+
+namespace {
+
+using namespace pierce::analysis;
+
+struct CoplanarPairRecord {
+  std::uint32_t geom_a, prim_a, geom_b, prim_b;
+  double area;
+  double centroid[3];
+  bool exact;
+  bool same_facing;
+};
+
+struct InterferenceRecord {
+  std::uint32_t ray, a, b;
+  double t_enter, t_exit, depth;
+  double entry[3];
+  double exit[3];
+};
+
+template <typename T>
+pyb::array_t<T> vector_array(const std::vector<T>& v) {
+  pyb::array_t<T> a(static_cast<pyb::ssize_t>(v.size()));
+  if (!v.empty()) std::memcpy(a.mutable_data(), v.data(), v.size() * sizeof(T));
+  return a;
+}
+
+template <typename T>
+pyb::array_t<std::uint64_t> offsets_array(const std::vector<T>& v) {
+  pyb::array_t<std::uint64_t> a(static_cast<pyb::ssize_t>(v.size()));
+  for (std::size_t i = 0; i < v.size(); ++i) a.mutable_data()[i] = static_cast<std::uint64_t>(v[i]);
+  return a;
+}
+
+pyb::array_t<CoplanarPairRecord> coplanar_pairs_array(const CoplanarReport& r) {
+  pyb::array_t<CoplanarPairRecord> a(static_cast<pyb::ssize_t>(r.pairs.size()));
+  CoplanarPairRecord* out = a.mutable_data();
+  for (std::size_t i = 0; i < r.pairs.size(); ++i) {
+    const CoplanarPair& p = r.pairs[i];
+    out[i] = {p.geom_a, p.prim_a, p.geom_b, p.prim_b, p.area, {p.centroid.x, p.centroid.y, p.centroid.z},
+              p.exact, p.same_facing};
+  }
+  return a;
+}
+
+pyb::array_t<InterferenceRecord> intervals_array(const RayOverlapReport& r) {
+  pyb::array_t<InterferenceRecord> a(static_cast<pyb::ssize_t>(r.intervals.size()));
+  InterferenceRecord* out = a.mutable_data();
+  for (std::size_t i = 0; i < r.intervals.size(); ++i) {
+    const Interference& x = r.intervals[i];
+    out[i] = {x.ray, x.a, x.b, x.t_enter, x.t_exit, x.depth, {x.entry.x, x.entry.y, x.entry.z},
+              {x.exit.x, x.exit.y, x.exit.z}};
+  }
+  return a;
+}
+
+}  // namespace
+
+void bind_overlaps(pyb::module_& m) {
+  PYBIND11_NUMPY_DTYPE(CoplanarPairRecord, geom_a, prim_a, geom_b, prim_b, area, centroid, exact, same_facing);
+  PYBIND11_NUMPY_DTYPE(InterferenceRecord, ray, a, b, t_enter, t_exit, depth, entry, exit);
+
+  // --- coplanar triangle pairs ---
+  pyb::class_<CoplanarSolidPair>(m, "CoplanarSolidPair", "Coplanar overlaps between solids a and b (a == b: inside one).")
+      .def_readonly("a", &CoplanarSolidPair::a)
+      .def_readonly("b", &CoplanarSolidPair::b)
+      .def_readonly("pairs", &CoplanarSolidPair::pairs)
+      .def_readonly("exact_pairs", &CoplanarSolidPair::exact_pairs)
+      .def_readonly("same_facing", &CoplanarSolidPair::same_facing, "duplicated faces")
+      .def_readonly("opposite_facing", &CoplanarSolidPair::opposite_facing, "contacts")
+      .def_readonly("area", &CoplanarSolidPair::area)
+      .def_readonly("where", &CoplanarSolidPair::where)
+      .def("__repr__", [](const CoplanarSolidPair& p) {
+        return "<pierce.CoplanarSolidPair " + std::to_string(p.a) + "-" + std::to_string(p.b) + ": " +
+               std::to_string(p.pairs) + " pairs, area " + std::to_string(p.area) + ">";
+      });
+  pyb::class_<CoplanarReport>(m, "CoplanarReport")
+      .def_readonly("tolerance", &CoplanarReport::tolerance)
+      .def_property_readonly("pairs", &coplanar_pairs_array,
+                             "structured array: geom_a, prim_a, geom_b, prim_b, area, centroid[3], exact, same_facing")
+      .def_readonly("solid_pairs", &CoplanarReport::solid_pairs)
+      .def_readonly("completed", &CoplanarReport::completed);
+
+  m.def(
+      "coplanar_overlaps",
+      [](PyScene& s, double tolerance, double min_area_rel, const pyb::object& progress, CancelToken* cancel) {
+        CoplanarOptions o;
+        o.tolerance = tolerance;
+        o.min_area_rel = min_area_rel;
+        auto result = std::make_unique<CoplanarReport>();
+        PyScene::Use use(s);
+        run_with_progress(progress, cancel, 0, [&](ProgressState& st) {
+          *result = find_coplanar_overlaps(s.scene, o, [&](std::size_t d, std::size_t t) { return st.report(d, t); });
+        });
+        return result;
+      },
+      pyb::arg("scene"), pyb::kw_only(), pyb::arg("tolerance") = 0.0, pyb::arg("min_area_rel") = 1e-9,
+      pyb::arg("progress") = pyb::none(), pyb::arg("cancel") = nullptr,
+      "Triangle pairs lying in the same plane and overlapping there: duplicated faces (same facing) and\n"
+      "contacts between touching solids (opposite facing). tolerance 0: exactly coplanar pairs only.");
+
+  // --- interference and coplanar statistics along rays ---
+  pyb::class_<CoplanarRayStats>(m, "CoplanarRayStats", "Gribble et al.'s coplanar-hit statistic.")
+      .def_readonly("rays", &CoplanarRayStats::rays)
+      .def_readonly("rays_hitting", &CoplanarRayStats::rays_hitting)
+      .def_readonly("rays_equal_t", &CoplanarRayStats::rays_equal_t)
+      .def_readonly("rays_within_eps", &CoplanarRayStats::rays_within_eps)
+      .def_readonly("epsilon", &CoplanarRayStats::epsilon)
+      .def_property_readonly("share_equal", &CoplanarRayStats::share_equal)
+      .def_property_readonly("share_within_eps", &CoplanarRayStats::share_within_eps);
+  pyb::class_<InterferencePair>(m, "InterferencePair", "Solids a < b whose insides overlap along rays.")
+      .def_readonly("a", &InterferencePair::a)
+      .def_readonly("b", &InterferencePair::b)
+      .def_readonly("count", &InterferencePair::count)
+      .def_readonly("max_depth", &InterferencePair::max_depth, "largest line-of-sight depth inside both")
+      .def_readonly("max_depth_entry", &InterferencePair::max_depth_entry)
+      .def_readonly("max_depth_ray", &InterferencePair::max_depth_ray)
+      .def_readonly("axis_max_depth", &InterferencePair::axis_max_depth)
+      .def_readonly("penetration", &InterferencePair::penetration,
+                    "smallest over axes of the largest axis-parallel depth (NaN: no axis ray)")
+      .def("__repr__", [](const InterferencePair& p) {
+        return "<pierce.InterferencePair " + std::to_string(p.a) + "-" + std::to_string(p.b) + ": " +
+               std::to_string(p.count) + " intervals, max depth " + std::to_string(p.max_depth) +
+               ", penetration " + std::to_string(p.penetration) + ">";
+      });
+  pyb::class_<ContactPair>(m, "ContactPair", "Solids a < b touching at a shared surface (no overlap).")
+      .def_readonly("a", &ContactPair::a)
+      .def_readonly("b", &ContactPair::b)
+      .def_readonly("count", &ContactPair::count)
+      .def_readonly("where", &ContactPair::where)
+      .def("__repr__", [](const ContactPair& p) {
+        return "<pierce.ContactPair " + std::to_string(p.a) + "-" + std::to_string(p.b) + ": " +
+               std::to_string(p.count) + " rays>";
+      });
+  pyb::class_<RayOverlapReport>(m, "RayOverlapReport")
+      .def_readonly("coplanar", &RayOverlapReport::coplanar)
+      .def_property_readonly("intervals", &intervals_array,
+                             "structured array: ray, a, b, t_enter, t_exit, depth, entry[3], exit[3]")
+      .def_readonly("interferences", &RayOverlapReport::interferences)
+      .def_readonly("contacts", &RayOverlapReport::contacts)
+      .def_readonly("rays_ending_inside", &RayOverlapReport::rays_ending_inside)
+      .def_property_readonly("tri_offset", [](const RayOverlapReport& r) { return offsets_array(r.tri_offset); })
+      .def_property_readonly("coplanar_hits", [](const RayOverlapReport& r) { return vector_array(r.coplanar_hits); })
+      .def_property_readonly("interference_hits",
+                             [](const RayOverlapReport& r) { return vector_array(r.interference_hits); })
+      .def_readonly("completed", &RayOverlapReport::completed);
+
+  m.def(
+      "axis_grid_rays",
+      [](const PyScene& s, int n, std::vector<int> axes) {
+        if (n < 1) throw pyb::value_error("axis_grid_rays: n must be >= 1");
+        for (int a : axes)
+          if (a < 0 || a > 2) throw pyb::value_error("axis_grid_rays: axes are 0 (x), 1 (y), 2 (z)");
+        return rays_to_arrays(axis_grid_rays(s.scene.bounds(), n, axes));
+      },
+      pyb::arg("scene"), pyb::arg("n"), pyb::arg("axes") = std::vector<int>{0, 1, 2},
+      "n x n parallel rays along each axis through the scene bounds: (origins, directions, tmin, tmax).");
+
+  m.def(
+      "ray_overlaps",
+      [](PyScene& s, const pyb::object& origins, const pyb::object& directions, const pyb::handle& tmin,
+         const pyb::handle& tmax, int grid, std::vector<int> axes, const std::string& kernel, double epsilon_rel,
+         double tie_tolerance_rel, bool keep_intervals, const pyb::object& progress, CancelToken* cancel) {
+        std::vector<Ray> rays;
+        if (origins.is_none() != directions.is_none())
+          throw pyb::value_error("ray_overlaps: give both origins and directions, or neither (grid rays)");
+        if (!origins.is_none()) {
+          rays = make_rays(origins, directions, tmin, tmax);
+        } else {
+          if (grid < 1) throw pyb::value_error("ray_overlaps: grid must be >= 1");
+          for (int a : axes)
+            if (a < 0 || a > 2) throw pyb::value_error("ray_overlaps: axes are 0 (x), 1 (y), 2 (z)");
+          rays = axis_grid_rays(s.scene.bounds(), grid, axes);
+        }
+        RayOverlapOptions o;
+        o.kernel = kernel_from_name(kernel);
+        o.epsilon_rel = epsilon_rel;
+        o.tie_tolerance_rel = tie_tolerance_rel;
+        o.keep_intervals = keep_intervals;
+        auto result = std::make_unique<RayOverlapReport>();
+        PyScene::Use use(s);
+        run_with_progress(progress, cancel, rays.size(), [&](ProgressState& st) {
+          *result = analyse_ray_overlaps(s.accel(), rays, o, [&](std::size_t d, std::size_t t) { return st.report(d, t); });
+        });
+        return result;
+      },
+      pyb::arg("scene"), pyb::arg("origins") = pyb::none(), pyb::arg("directions") = pyb::none(), pyb::kw_only(),
+      pyb::arg("tmin") = 0.0, pyb::arg("tmax") = std::numeric_limits<double>::infinity(), pyb::arg("grid") = 64,
+      pyb::arg("axes") = std::vector<int>{0, 1, 2}, pyb::arg("kernel") = "queue", pyb::arg("epsilon_rel") = 1e-5,
+      pyb::arg("tie_tolerance_rel") = 1e-6, pyb::arg("keep_intervals") = true, pyb::arg("progress") = pyb::none(),
+      pyb::arg("cancel") = nullptr,
+      "Solid-solid interference along rays (BRL-CAD's OVERLAP report), contacts, and the coplanar-hit\n"
+      "statistic. Rays: the given ones, else grid x grid rays along each of `axes` through the bounds.");
+
+  m.def(
+      "triangle_overlap_arrays",
+      [](const PyScene& s, const CoplanarReport* coplanar, const RayOverlapReport* rays) {
+        const TriangleOverlapArrays a = triangle_overlap_arrays(s.scene, coplanar, rays);
+        pyb::dict d;
+        d["tri_offset"] = offsets_array(a.tri_offset);
+        d["solid"] = vector_array(a.solid);
+        d["coplanar_count"] = vector_array(a.coplanar_count);
+        d["coplanar_partner"] = vector_array(a.coplanar_partner);
+        d["coplanar_hits"] = vector_array(a.coplanar_hits);
+        d["interference_hits"] = vector_array(a.interference_hits);
+        d["overlap_count"] = vector_array(a.overlap_count);
+        return d;
+      },
+      pyb::arg("scene"), pyb::arg("coplanar") = nullptr, pyb::arg("rays") = nullptr,
+      "Per-triangle heat-map arrays (triangle (g, p) at tri_offset[g] + p) from either or both reports.");
+}
+
+}  // namespace pierce::py

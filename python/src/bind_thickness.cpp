@@ -1,0 +1,225 @@
+// pierce.thickness: wall-thickness maps (ray, cone, sphere), results as zero-copy numpy views.
+#include <pybind11/stl.h>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <limits>
+#include <optional>
+
+#include "common.h"
+#include "pierce/analysis/thickness.h"
+#include "progress.h"
+
+namespace pierce::py {
+
+namespace {
+
+using namespace pierce::analysis;
+
+ThicknessMethod method_from_name(const std::string& s) {
+  if (s == "ray") return ThicknessMethod::ray;
+  if (s == "cone") return ThicknessMethod::cone;
+  if (s == "sphere") return ThicknessMethod::sphere;
+  throw pyb::value_error("unknown thickness method '" + s + "' (known: ray, cone, sphere)");
+}
+SampleAt per_from_name(const std::string& s) {
+  if (s == "vertex") return SampleAt::vertex;
+  if (s == "face") return SampleAt::face;
+  throw pyb::value_error("unknown sampling '" + s + "' (known: vertex, face)");
+}
+ConeAggregate aggregate_from_name(const std::string& s) {
+  if (s == "shapira") return ConeAggregate::shapira;
+  if (s == "median") return ConeAggregate::median;
+  throw pyb::value_error("unknown cone aggregate '" + s + "' (known: shapira, median)");
+}
+
+}  // namespace
+
+void bind_thickness(pyb::module_& m) {
+  pyb::class_<Histogram>(m, "Histogram")
+      .def_readonly("edges", &Histogram::edges, "bins + 1 increasing edges")
+      .def_readonly("counts", &Histogram::counts, "counts[i]: values in [edges[i], edges[i+1]) (last bin closed)");
+
+  pyb::class_<Summary>(m, "Summary", "Statistics over the finite values.")
+      .def_readonly("count", &Summary::count)
+      .def_readonly("min", &Summary::min)
+      .def_readonly("max", &Summary::max)
+      .def_readonly("mean", &Summary::mean)
+      .def_readonly("percentiles", &Summary::percentiles, "[(q in 0..100, value), ...]")
+      .def_readonly("histogram", &Summary::histogram)
+      .def(
+          "percentile",
+          [](const Summary& s, double q) {
+            for (const auto& [k, v] : s.percentiles)
+              if (k == q) return v;
+            throw pyb::key_error("percentile " + std::to_string(q) + " was not computed");
+          },
+          pyb::arg("q"))
+      .def("__repr__", [](const Summary& s) {
+        return "<pierce.Summary count=" + std::to_string(s.count) + " min=" + std::to_string(s.min) +
+               " mean=" + std::to_string(s.mean) + " max=" + std::to_string(s.max) + ">";
+      });
+
+  pyb::class_<SolidThickness>(m, "SolidThickness", "Per-solid thickness statistics.")
+      .def_readonly("geom", &SolidThickness::geom)
+      .def_readonly("name", &SolidThickness::name)
+      .def_readonly("elements", &SolidThickness::elements)
+      .def_readonly("valid", &SolidThickness::valid)
+      .def_readonly("no_exit", &SolidThickness::no_exit)
+      .def_readonly("no_normal", &SolidThickness::no_normal)
+      .def_readonly("thin", &SolidThickness::thin)
+      .def_readonly("summary", &SolidThickness::summary)
+      .def("__repr__", [](const SolidThickness& s) {
+        return "<pierce.SolidThickness " + std::to_string(s.geom) + " '" + s.name + "': " +
+               std::to_string(s.valid) + "/" + std::to_string(s.elements) + " valid, min " +
+               std::to_string(s.summary.min) + ">";
+      });
+
+  // Arrays are read-only views into the result (kept alive by them).
+  pyb::class_<ThicknessResult>(m, "ThicknessResult",
+                               "One entry per sampled element, solid by solid; element = vertex or triangle "
+                               "index in its geometry.")
+      .def_property_readonly("per", [](const ThicknessResult& r) { return r.per == SampleAt::vertex ? "vertex" : "face"; })
+      .def_readonly("completed", &ThicknessResult::completed)
+      .def_readonly("solids", &ThicknessResult::solids, "per-solid statistics (SolidThickness)")
+      .def("__len__", &ThicknessResult::size)
+      .def_property_readonly("solid", [](pyb::object self) {
+        const auto& r = self.cast<const ThicknessResult&>();
+        return readonly_view(r.solid.data(), r.solid.size(), 0, self);
+      }, "(N,) uint32 geometry id")
+      .def_property_readonly("element", [](pyb::object self) {
+        const auto& r = self.cast<const ThicknessResult&>();
+        return readonly_view(r.element.data(), r.element.size(), 0, self);
+      }, "(N,) uint32 vertex or triangle index")
+      .def_property_readonly("point", [](pyb::object self) {
+        const auto& r = self.cast<const ThicknessResult&>();
+        return readonly_view(r.point.empty() ? nullptr : &r.point.data()->x, r.point.size(), 3, self);
+      }, "(N, 3) sample points")
+      .def_property_readonly("normal", [](pyb::object self) {
+        const auto& r = self.cast<const ThicknessResult&>();
+        return readonly_view(r.normal.empty() ? nullptr : &r.normal.data()->x, r.normal.size(), 3, self);
+      }, "(N, 3) unit outward normals (zero where none)")
+      .def_property_readonly("thickness", [](pyb::object self) {
+        const auto& r = self.cast<const ThicknessResult&>();
+        return readonly_view(r.thickness.data(), r.thickness.size(), 0, self);
+      }, "(N,) float64, NaN where there is none")
+      .def_property_readonly("thin", [](pyb::object self) {
+        const auto& r = self.cast<const ThicknessResult&>();
+        static_assert(sizeof(bool) == sizeof(std::uint8_t));
+        pyb::array a(pyb::dtype("bool"), {static_cast<pyb::ssize_t>(r.thin.size())}, {}, r.thin.data(), self);
+        a.attr("flags").attr("writeable") = false;
+        return a;
+      }, "(N,) bool, thickness < min_thickness")
+      .def_property_readonly("status", [](pyb::object self) {
+        const auto& r = self.cast<const ThicknessResult&>();
+        static_assert(sizeof(ThicknessStatus) == sizeof(std::uint8_t));
+        return readonly_view(reinterpret_cast<const std::uint8_t*>(r.status.data()), r.status.size(), 0, self);
+      }, "(N,) uint8: 0 ok, 1 no_exit, 2 no_normal (see THICKNESS_STATUS)")
+      .def("__repr__", [](const ThicknessResult& r) {
+        return "<pierce.ThicknessResult " + std::to_string(r.size()) + " " +
+               (r.per == SampleAt::vertex ? "vertices" : "faces") + ", " + std::to_string(r.solids.size()) +
+               " solids>";
+      });
+  m.attr("THICKNESS_STATUS") = pyb::make_tuple("ok", "no_exit", "no_normal");
+
+  m.def(
+      "thickness",
+      [](PyScene& s, const std::string& method, const std::string& per, double max_distance, double min_thickness,
+         int cone_rays, double cone_angle, const std::string& cone_aggregate, int sphere_max_iterations,
+         double tie_tolerance_rel, const std::string& kernel, std::vector<std::uint32_t> solids,
+         std::optional<std::vector<double>> percentiles, int histogram_bins, const pyb::object& progress,
+         CancelToken* cancel) {
+        ThicknessOptions o;
+        o.method = method_from_name(method);
+        o.per = per_from_name(per);
+        o.max_distance = max_distance;
+        o.min_thickness = min_thickness;
+        o.cone_rays = cone_rays;
+        o.cone_angle_deg = cone_angle;
+        o.cone_aggregate = aggregate_from_name(cone_aggregate);
+        o.sphere_max_iterations = sphere_max_iterations;
+        o.tie_tolerance_rel = tie_tolerance_rel;
+        o.kernel = kernel_from_name(kernel);
+        o.solids = std::move(solids);
+        if (percentiles) o.percentiles = *percentiles;
+        o.histogram_bins = histogram_bins;
+        for (auto g : o.solids)
+          if (g >= s.scene.geometries().size())
+            throw pyb::value_error("thickness: solid " + std::to_string(g) + " is not in the scene (it has " +
+                                   std::to_string(s.scene.geometries().size()) + " geometries)");
+        auto result = std::make_unique<ThicknessResult>();
+        PyScene::Use use(s);
+        run_with_progress(progress, cancel, 0, [&](ProgressState& st) {
+          *result = compute_thickness(s.accel(), o, [&](std::size_t d, std::size_t t) { return st.report(d, t); });
+        });
+        return result;
+      },
+      pyb::arg("scene"), pyb::kw_only(), pyb::arg("method") = "ray", pyb::arg("per") = "vertex",
+      pyb::arg("max_distance") = std::numeric_limits<double>::infinity(), pyb::arg("min_thickness") = 0.0,
+      pyb::arg("cone_rays") = 30, pyb::arg("cone_angle") = 120.0, pyb::arg("cone_aggregate") = "shapira",
+      pyb::arg("sphere_max_iterations") = 100, pyb::arg("tie_tolerance_rel") = 1e-6, pyb::arg("kernel") = "queue",
+      pyb::arg("solids") = std::vector<std::uint32_t>{}, pyb::arg("percentiles") = pyb::none(),
+      pyb::arg("histogram_bins") = 20, pyb::arg("progress") = pyb::none(), pyb::arg("cancel") = nullptr,
+      "Wall thickness per vertex or per face of the given solids (all when empty); the other solids take part\n"
+      "as neighbours. method: ray (along the inward normal to where the ray leaves the solid), cone\n"
+      "(shape-diameter function over cone_rays rays in a cone_angle-degree cone) or sphere (largest inscribed\n"
+      "ball). Elements whose ray escapes (open mesh, beyond max_distance) get NaN, status no_exit.");
+
+  m.def(
+      "thickness_along",
+      [](PyScene& s, const pyb::handle& geoms, const pyb::handle& points, const pyb::handle& inward,
+         double max_distance, double tie_tolerance_rel, const std::string& kernel, const pyb::object& progress,
+         CancelToken* cancel) {
+        // Adapter for callers that know better normals than the mesh's averaged ones (CAD faces):
+        // the core's ray_exit_distance at caller-given points and inward directions.
+        const KernelKind kind = kernel_from_name(kernel);
+        if (!is_exact(kind)) throw pyb::value_error("thickness_along: kernel must be exact");
+        const std::vector<Ray> rays = make_rays(points, inward, pyb::float_(0.0), pyb::float_(max_distance));
+        auto g = pyb::array_t<std::int64_t, pyb::array::c_style | pyb::array::forcecast>::ensure(geoms);
+        if (!g) {
+          PyErr_Clear();
+          throw pyb::type_error("geoms must be an integer or an array of geometry ids");
+        }
+        if (g.ndim() > 1 || (g.ndim() == 1 && static_cast<std::size_t>(g.size()) != rays.size()))
+          throw pyb::value_error("geoms must be one id or one per point");
+        std::vector<std::uint32_t> geom(rays.size());
+        const auto n_geoms = static_cast<std::int64_t>(s.scene.geometries().size());
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+          const std::int64_t v = g.ndim() == 0 ? *g.data() : g.data()[i];
+          if (v < 0 || v >= n_geoms)
+            throw pyb::value_error("geometry id " + std::to_string(v) + " is not in the scene");
+          geom[i] = static_cast<std::uint32_t>(v);
+        }
+        std::vector<double> out(rays.size(), std::numeric_limits<double>::quiet_NaN());
+        PyScene::Use use(s);
+        run_with_progress(progress, cancel, rays.size(), [&](ProgressState& st) {
+          const Accel& accel = s.accel();
+          const double tie = tie_distance(s.scene, tie_tolerance_rel);
+          KernelOptions ko;
+          ko.order.tie = TieOrder::leave_before_enter;  // what ray_exit_distance requires
+          tbb::enumerable_thread_specific<HitIterator> iters([&] { return HitIterator(accel, kind, ko); });
+          std::atomic<std::size_t> done{0};
+          tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 256), [&](const auto& range) {
+            if (st.cancelled()) return;
+            HitIterator& it = iters.local();
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+              const Vec3d dir = rays[i].dir * (1.0 / length(rays[i].dir));
+              out[i] = ray_exit_distance(it, geom[i], rays[i].org, dir, max_distance, tie);
+            }
+            st.report(done.fetch_add(range.size()) + range.size());
+          });
+        });
+        pyb::array_t<double> a(static_cast<pyb::ssize_t>(out.size()));
+        std::copy(out.begin(), out.end(), a.mutable_data());
+        return a;
+      },
+      pyb::arg("scene"), pyb::arg("geoms"), pyb::arg("points"), pyb::arg("inward"), pyb::kw_only(),
+      pyb::arg("max_distance") = std::numeric_limits<double>::infinity(), pyb::arg("tie_tolerance_rel") = 1e-6,
+      pyb::arg("kernel") = "queue", pyb::arg("progress") = pyb::none(), pyb::arg("cancel") = nullptr,
+      "Ray thickness at given surface points of solid geoms (one id or one per point) along given inward\n"
+      "directions (normalised here): distance to where the ray leaves that solid, NaN if it does not.");
+}
+
+}  // namespace pierce::py

@@ -1,0 +1,116 @@
+#pragma once
+// Shared pieces of the bindings: the Python-side scene (scene + lazily built acceleration
+// structures) and numpy conversion helpers.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "pierce/kernel.h"
+#include "pierce/scene.h"
+
+namespace pierce::py {
+
+namespace pyb = pybind11;
+
+// A Scene plus the acceleration structures over it, built on first use and dropped when
+// geometry is added. Long calls mark the scene busy so it cannot change under them.
+class PyScene {
+ public:
+  Scene scene;
+
+  // Builds the acceleration structures if needed. Call without the GIL.
+  const Accel& accel();
+
+  // While alive, add_mesh refuses to run (a call on another thread is reading the scene).
+  class Use {
+   public:
+    explicit Use(PyScene& s) : s_(s) { ++s_.users_; }
+    ~Use() { --s_.users_; }
+    Use(const Use&) = delete;
+    Use& operator=(const Use&) = delete;
+
+   private:
+    PyScene& s_;
+  };
+  bool in_use() const { return users_.load() > 0; }
+  void invalidate_accel() { accel_.reset(); }
+
+ private:
+  std::mutex accel_mutex_;
+  std::unique_ptr<Accel> accel_;
+  std::atomic<int> users_{0};
+};
+
+// (N, 3) float64 rows from any array-like (lists, float32, non-contiguous): no copy when the
+// input already is C-contiguous float64. `what` names the argument in error messages.
+pyb::array_t<double, pyb::array::c_style> as_points(const pyb::handle& obj, const char* what);
+
+// Checked copy into Vec3d rows.
+std::vector<Vec3d> to_vec3d(const pyb::array_t<double, pyb::array::c_style>& a);
+
+// (M, 3) triangle indices from any integer array-like, checked to be >= 0 and < 2^32.
+std::vector<Tri> to_triangles(const pyb::handle& obj, const char* what);
+
+// A read-only numpy view of `count` rows of `cols` elements at `data`, keeping `owner` alive.
+template <typename T>
+pyb::array readonly_view(const T* data, std::size_t count, std::size_t cols, const pyb::handle& owner) {
+  std::vector<pyb::ssize_t> shape{static_cast<pyb::ssize_t>(count)};
+  std::vector<pyb::ssize_t> strides{static_cast<pyb::ssize_t>(sizeof(T) * (cols ? cols : 1))};
+  if (cols) {
+    shape.push_back(static_cast<pyb::ssize_t>(cols));
+    strides.push_back(sizeof(T));
+  }
+  pyb::array a(pyb::dtype::of<T>(), shape, strides, data, owner);
+  a.attr("flags").attr("writeable") = false;
+  return a;
+}
+
+KernelKind kernel_from_name(const std::string& name);
+TieOrder tie_from_name(const std::string& name);
+
+// Rays from (N, 3) origins and directions and a scalar or per-ray tmin/tmax; InputError names
+// the first bad ray (non-finite origin or direction, zero direction, NaN bounds).
+std::vector<Ray> make_rays(const pyb::handle& origins, const pyb::handle& directions, const pyb::handle& tmin,
+                           const pyb::handle& tmax);
+// (origins, directions, tmin, tmax) arrays of a ray list.
+pyb::tuple rays_to_arrays(const std::vector<Ray>& rays);
+
+// (2, 3) array: min corner, max corner.
+pyb::array_t<double> bounds_array(const BBoxd& b);
+
+void bind_scene(pyb::module_& m);
+void bind_hits(pyb::module_& m);
+void bind_thickness(pyb::module_& m);
+void bind_overlaps(pyb::module_& m);
+void bind_partitions(pyb::module_& m);
+void bind_shotline(pyb::module_& m);
+void bind_io(pyb::module_& m);
+
+}  // namespace pierce::py
+
+// Vec3d <-> (x, y, z) tuple, so result structs convert without wrapper classes.
+namespace pybind11::detail {
+template <>
+struct type_caster<pierce::Vec3d> {
+  PYBIND11_TYPE_CASTER(pierce::Vec3d, const_name("tuple[float, float, float]"));
+  bool load(handle src, bool) {
+    if (!isinstance<sequence>(src) || isinstance<str>(src)) return false;
+    const auto seq = reinterpret_borrow<sequence>(src);
+    if (seq.size() != 3) return false;
+    value = {seq[0].cast<double>(), seq[1].cast<double>(), seq[2].cast<double>()};
+    return true;
+  }
+  static handle cast(const pierce::Vec3d& v, return_value_policy, handle) {
+    return make_tuple(v.x, v.y, v.z).release();
+  }
+};
+}  // namespace pybind11::detail
+
+namespace pierce::py {
+
+}  // namespace pierce::py

@@ -1,0 +1,173 @@
+"""pierce.trace: hits as structured arrays, kernel agreement, progress on the caller's thread, cancel."""
+import threading
+import unittest
+
+import numpy as np
+
+import pierce
+
+EXACT = [k for k in pierce.kernels() if pierce.is_exact(k)]
+
+
+def plates_scene(layers=10, thickness=0.1):
+    s = pierce.Scene()
+    for p in pierce.gen.stacked_plates(layers, 1.0, thickness):
+        s.add(p)
+    return s
+
+
+def z_grid(n, z=-1.0, lo=0.0, hi=1.0):
+    """n*n rays along +z through a grid that includes the plates' edges (x, y in {0, 1})."""
+    xs = np.linspace(lo, hi, n)
+    x, y = np.meshgrid(xs, xs)
+    org = np.stack([x.ravel(), y.ravel(), np.full(x.size, z)], axis=1)
+    return org, np.tile([0.0, 0.0, 1.0], (len(org), 1))
+
+
+class TraceTest(unittest.TestCase):
+    def test_box_hits_in_order_with_enter_flags(self):
+        s = pierce.Scene()
+        s.add(pierce.gen.box((0, 0, 0), (2, 3, 4), "b"))
+        h = pierce.trace(s, [[0.5, 0.5, -1.0]], [[0, 0, 1]])
+        self.assertEqual(len(h), 1)
+        r = h.for_ray(0)
+        np.testing.assert_allclose(r["t"], [1.0, 5.0])
+        self.assertEqual(r["enter"].tolist(), [True, False])
+        self.assertEqual(r["geom"].tolist(), [0, 0])
+        self.assertEqual(r["ray"].tolist(), [0, 0])
+        self.assertEqual(r["ng"].shape, (2, 3))
+        self.assertLess(r["ng"][0, 2], 0)  # bottom face normal points down (outward)
+
+    def test_touching_plates_every_exact_kernel_gives_every_surface_once(self):
+        s = plates_scene(10)
+        org, d = z_grid(17)  # 289 rays, some exactly along the plates' side faces and edges
+        ref = pierce.trace(s, org, d, kernel="restart")
+        inside = (org[:, 0] > 0) & (org[:, 0] < 1) & (org[:, 1] > 0) & (org[:, 1] < 1)
+        self.assertTrue(np.all(ref.counts[inside] == 20))
+        for k in EXACT:
+            with self.subTest(kernel=k):
+                h = pierce.trace(s, org, d, kernel=k)
+                np.testing.assert_array_equal(h.offsets, ref.offsets)
+                for f in ("ray", "t", "geom", "prim", "enter"):
+                    np.testing.assert_array_equal(h.records[f], ref.records[f])
+
+    def test_leave_before_enter_order_at_shared_faces(self):
+        s = plates_scene(2, thickness=0.5)
+        h = pierce.trace(s, [[0.5, 0.5, -1]], [[0, 0, 1]], order="leave_before_enter").for_ray(0)
+        self.assertEqual(h["enter"].tolist(), [True, False, True, False])
+        self.assertEqual(h["geom"].tolist(), [0, 0, 1, 1])
+        np.testing.assert_allclose(h["t"], [1.0, 1.5, 1.5, 2.0])
+
+    def test_max_hits_tmin_tmax(self):
+        s = plates_scene(10)
+        org, d = z_grid(3, lo=0.25, hi=0.75)
+        self.assertTrue(np.all(pierce.trace(s, org, d, max_hits=3).counts == 3))
+        # t in [1.05, 1.55]: the faces at z = 0.1 .. 0.5 , each shared by two plates -> 10 hits.
+        h = pierce.trace(s, org, d, tmin=1.05, tmax=np.full(len(org), 1.55))
+        self.assertTrue(np.all(h.counts == 10), h.counts)
+        self.assertTrue(np.all((h.records["t"] >= 1.05) & (h.records["t"] <= 1.55)))
+
+    def test_empty_batch(self):
+        h = pierce.trace(plates_scene(1), np.zeros((0, 3)), np.zeros((0, 3)))
+        self.assertEqual(len(h), 0)
+        self.assertEqual(h.total, 0)
+
+    def test_bad_rays_and_options(self):
+        s = plates_scene(1)
+        with self.assertRaisesRegex(pierce.InputError, "ray 1: direction is zero"):
+            pierce.trace(s, [[0, 0, 0], [0, 0, 0]], [[0, 0, 1], [0, 0, 0]])
+        with self.assertRaisesRegex(pierce.InputError, "ray 0: origin is not finite"):
+            pierce.trace(s, [[np.inf, 0, 0]], [[0, 0, 1]])
+        with self.assertRaisesRegex(ValueError, "unknown kernel 'fast'.*queue"):
+            pierce.trace(s, [[0, 0, 0]], [[0, 0, 1]], kernel="fast")
+        with self.assertRaisesRegex(ValueError, "same length"):
+            pierce.trace(s, [[0, 0, 0]], [[0, 0, 1], [0, 0, 1]])
+        with self.assertRaisesRegex(ValueError, r"tmax must be a number or have shape \(1,\)"):
+            pierce.trace(s, [[0, 0, 0]], [[0, 0, 1]], tmax=[1.0, 2.0])
+        with self.assertRaises(TypeError):
+            pierce.trace(s, [[0, 0, 0]], [[0, 0, 1]], progress=5)
+
+    def test_scene_cannot_change_while_in_use_but_can_afterwards(self):
+        s = plates_scene(1)
+        pierce.trace(s, [[0.5, 0.5, -1]], [[0, 0, 1]])
+        s.add(pierce.gen.box((0, 0, 5), (1, 1, 6)))  # invalidates the acceleration structures
+        self.assertEqual(pierce.trace(s, [[0.5, 0.5, -1]], [[0, 0, 1]]).total, 4)
+
+
+class ProgressAndCancelTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        # Big enough to run for several progress intervals (0.1 s) on any machine.
+        cls.scene = pierce.Scene()
+        for c in pierce.gen.cube_grid(6):
+            cls.scene.add(c)
+        rng = np.random.default_rng(1)
+        n = 1_000_000
+        cls.org = np.column_stack([rng.uniform(0, 6, n), rng.uniform(0, 6, n), np.full(n, -1.0)])
+        cls.dir = np.tile([0.0, 0.0, 1.0], (n, 1))
+
+    def test_progress_runs_on_calling_thread_and_ends_at_total(self):
+        calls = []
+        main = threading.get_ident()
+
+        def progress(done, total):
+            calls.append((threading.get_ident(), done, total))
+
+        n = 20000
+        pierce.trace(self.scene, self.org[:n], self.dir[:n], progress=progress)
+        self.assertTrue(calls)
+        self.assertTrue(all(t == main for t, _, _ in calls))
+        self.assertEqual(calls[-1][1:], (n, n))
+        self.assertTrue(all(a[1] <= b[1] for a, b in zip(calls, calls[1:])))
+
+    def test_callback_returning_false_cancels(self):
+        calls = []
+
+        def stop(done, total):
+            calls.append(done)
+            return False
+
+        with self.assertRaises(pierce.Cancelled):
+            pierce.trace(self.scene, self.org, self.dir, kernel="restart", progress=stop)
+        self.assertEqual(len(calls), 1)  # the first report stops it; no final report
+
+    def test_exception_in_callback_propagates_and_stops(self):
+        def boom(done, total):
+            raise KeyError("from callback")
+
+        with self.assertRaisesRegex(KeyError, "from callback"):
+            pierce.trace(self.scene, self.org, self.dir, kernel="restart", progress=boom)
+
+    def test_cancel_token_from_another_thread(self):
+        token = pierce.CancelToken()
+        timer = threading.Timer(0.05, token.cancel)
+        timer.start()
+        with self.assertRaises(pierce.Cancelled):
+            pierce.trace(self.scene, self.org, self.dir, kernel="restart", cancel=token)
+        timer.join()
+        self.assertTrue(token.cancelled)
+        token.reset()
+        h = pierce.trace(self.scene, self.org[:10], self.dir[:10], cancel=token)
+        self.assertEqual(len(h), 10)
+
+    def test_other_python_threads_run_during_a_call(self):
+        ticks = []
+        stop = threading.Event()
+
+        def ticker():
+            while not stop.is_set():
+                ticks.append(1)
+                stop.wait(0.01)
+
+        t = threading.Thread(target=ticker)
+        t.start()
+        try:
+            pierce.trace(self.scene, self.org[:300000], self.dir[:300000], kernel="restart")
+        finally:
+            stop.set()
+            t.join()
+        self.assertGreater(len(ticks), 1)  # the GIL was released while tracing
+
+
+if __name__ == "__main__":
+    unittest.main()

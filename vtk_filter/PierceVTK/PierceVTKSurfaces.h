@@ -1,0 +1,58 @@
+#pragma once
+// The input surfaces of the Pierce filters as a pierce::Scene, one geometry per solid.
+//
+// A vtkPolyData is one solid; any other vtkDataSet is one solid through its outer surface
+// (vtkDataSetSurfaceFilter); a composite data set (multiblock, partitioned collection) gives one
+// solid per non-empty leaf, named after its block. Polygons and strips are triangulated
+// (vtkTriangleFilter) and vertices and lines dropped, so each solid's `surface` holds triangles
+// only; point ids are unchanged (scene vertex i = point i) and triangle j is the scene's prim j.
+// The filters attach their results to these surfaces.
+#include <string>
+#include <vector>
+
+#include <vtkSmartPointer.h>
+
+#include "pierce/scene.h"
+
+class vtkDataObject;
+class vtkFieldData;
+class vtkInformationVector;
+class vtkPolyData;
+
+namespace pierce_vtk {
+
+struct Solid {
+  vtkSmartPointer<vtkPolyData> surface;  // triangles only
+  std::string name;
+  unsigned int flat_index = 0;  // the leaf's flat index in a composite input (0 otherwise)
+};
+
+struct Surfaces {
+  pierce::Scene scene;
+  std::vector<Solid> solids;          // solids[g] is the scene's geometry g
+  std::vector<std::string> warnings;  // input parts that were ignored
+};
+
+// Builds `out` from the filter's input. Returns false with `error` naming the block and the
+// problem when there is nothing to analyse (no input, no cells, only vertices or lines) or the
+// input is invalid (non-finite or out-of-range point coordinates).
+// With `orient_outward`, solids whose enclosed volume is negative (inward-facing winding, as
+// some exporters write) enter the scene with their triangles flipped; the surfaces stay as given.
+bool ExtractSurfaces(vtkDataObject* input, Surfaces& out, std::string& error, bool orient_outward = false);
+
+// The output data object for "input surfaces with result arrays": vtkPolyData for a data set,
+// a new instance of the input's type for a composite data set (nullptr for other types).
+vtkSmartPointer<vtkDataObject> NewSurfaceOutput(vtkDataObject* input);
+
+// RequestDataObject of filters whose output 0 is NewSurfaceOutput(input 0) and whose output 1
+// (when present) is a vtkTable. Returns 0 when the input type is not supported.
+int RequestSurfaceDataObject(vtkInformationVector** input, vtkInformationVector* output);
+
+// Fills `output` (made by NewSurfaceOutput) with the solids' surfaces: the polydata itself, or
+// the input's composite structure with every solid's leaf replaced (empty leaves stay empty).
+void StoreSurfaces(const Surfaces& surfaces, vtkDataObject* input, vtkDataObject* output);
+
+// Field data array "SolidNames": the name of solid id i at index i.
+void AddSolidNames(const Surfaces& surfaces, vtkFieldData* field_data);
+
+}  // namespace pierce_vtk

@@ -1,0 +1,138 @@
+#include "vtkPierceRayClassify.h"
+
+#include <string>
+
+#include <vtkCompositeDataSet.h>
+#include <vtkDataArray.h>
+#include <vtkDataSet.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkTable.h>
+
+#include "PierceVTKPartitions.h"
+#include "PierceVTKProgress.h"
+#include "PierceVTKRays.h"
+#include "PierceVTKSurfaces.h"
+
+vtkStandardNewMacro(vtkPierceRayClassify);
+
+vtkPierceRayClassify::vtkPierceRayClassify()
+  : RayDirection{ 0.0, 0.0, 1.0 }
+  , UseDirectionArray(false)
+  , DirectionArrayName(nullptr)
+  , MaxLength(0.0)
+  , IncludeGaps(false)
+  , InconsistentRays(0)
+{
+  this->SetNumberOfInputPorts(2);
+  this->SetNumberOfOutputPorts(2);
+}
+
+vtkPierceRayClassify::~vtkPierceRayClassify()
+{
+  this->SetDirectionArrayName(nullptr);
+}
+
+void vtkPierceRayClassify::SetRaysConnection(vtkAlgorithmOutput* output)
+{
+  this->SetInputConnection(1, output);
+}
+
+void vtkPierceRayClassify::SetRaysData(vtkDataObject* rays)
+{
+  this->SetInputData(1, rays);
+}
+
+vtkTable* vtkPierceRayClassify::GetTableOutput()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(1));
+}
+
+int vtkPierceRayClassify::FillInputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
+  if (port == 0)
+  {
+    info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet");
+  }
+  return 1;
+}
+
+int vtkPierceRayClassify::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkPolyData" : "vtkTable");
+  return 1;
+}
+
+int vtkPierceRayClassify::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  this->InconsistentRays = 0;
+  pierce_vtk::Surfaces surfaces;
+  std::string error;
+  if (!pierce_vtk::ExtractSurfaces(vtkDataObject::GetData(inputVector[0], 0), surfaces, error, true))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  for (const std::string& warning : surfaces.warnings)
+  {
+    vtkWarningMacro(<< warning);
+  }
+
+  vtkDataSet* rayInput = vtkDataSet::GetData(inputVector[1], 0);
+  vtkDataArray* directions = nullptr;
+  if (this->UseDirectionArray && rayInput)
+  {
+    const std::string name = this->DirectionArrayName ? this->DirectionArrayName : "";
+    directions = rayInput->GetPointData()->GetArray(name.c_str());
+    if (!directions)
+    {
+      vtkErrorMacro(<< "the ray input has no point array '" << name << "' for the ray directions");
+      return 0;
+    }
+  }
+  pierce_vtk::RayInput rays;
+  if (!pierce_vtk::ExtractRays(rayInput, this->RayDirection, directions, this->MaxLength, rays, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  if (rays.skipped > 0)
+  {
+    vtkWarningMacro(<< rays.skipped << " rays without a usable origin or direction were skipped");
+  }
+
+  pierce_vtk::ProgressBridge progress(this);
+  pierce_vtk::ClassifiedRays classified;
+  if (!pierce_vtk::ClassifyRays(surfaces.scene, rays.rays, progress, classified))
+  {
+    return 1; // aborted: the executive hands out empty outputs
+  }
+  this->InconsistentRays = static_cast<vtkIdType>(classified.inconsistent_rays);
+  if (this->InconsistentRays > 0)
+  {
+    vtkWarningMacro(<< this->InconsistentRays
+                    << " rays crossed an open or non-manifold solid (an entry without exit or an exit "
+                       "without entry); those crossings claim nothing");
+  }
+  pierce_vtk::WritePartitions(classified, rays, surfaces, this->IncludeGaps,
+    vtkPolyData::GetData(outputVector, 0), vtkTable::GetData(outputVector, 1));
+  return 1;
+}
+
+void vtkPierceRayClassify::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "RayDirection: (" << this->RayDirection[0] << ", " << this->RayDirection[1] << ", "
+     << this->RayDirection[2] << ")\n";
+  os << indent << "UseDirectionArray: " << this->UseDirectionArray << "\n";
+  os << indent << "DirectionArrayName: " << (this->DirectionArrayName ? this->DirectionArrayName : "(none)")
+     << "\n";
+  os << indent << "MaxLength: " << this->MaxLength << "\n";
+  os << indent << "IncludeGaps: " << this->IncludeGaps << "\n";
+  os << indent << "InconsistentRays: " << this->InconsistentRays << "\n";
+}

@@ -1,0 +1,120 @@
+#include "vtkPierceThickness.h"
+
+#include <stdexcept>
+#include <string>
+
+#include <vtkCompositeDataSet.h>
+#include <vtkDataObject.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkObjectFactory.h>
+#include <vtkTable.h>
+
+#include "PierceVTKProgress.h"
+#include "PierceVTKSurfaces.h"
+#include "PierceVTKThickness.h"
+#include "pierce/kernel.h"
+
+vtkStandardNewMacro(vtkPierceThickness);
+
+vtkPierceThickness::vtkPierceThickness()
+  : Method(RAY)
+  , SampleAt(POINTS)
+  , MaxDistance(0.0)
+  , MinThickness(0.0)
+  , ConeRays(30)
+  , ConeAngle(120.0)
+  , ConeAggregate(SHAPIRA)
+{
+  this->SetNumberOfInputPorts(1);
+  this->SetNumberOfOutputPorts(2);
+}
+
+vtkPierceThickness::~vtkPierceThickness() = default;
+
+vtkTable* vtkPierceThickness::GetStatisticsOutput()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(1));
+}
+
+int vtkPierceThickness::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet");
+  return 1;
+}
+
+int vtkPierceThickness::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkDataObject" : "vtkTable");
+  return 1;
+}
+
+int vtkPierceThickness::RequestDataObject(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  return pierce_vtk::RequestSurfaceDataObject(inputVector, outputVector);
+}
+
+int vtkPierceThickness::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
+  pierce_vtk::Surfaces surfaces;
+  std::string error;
+  if (!pierce_vtk::ExtractSurfaces(input, surfaces, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  for (const std::string& warning : surfaces.warnings)
+  {
+    vtkWarningMacro(<< warning);
+  }
+
+  pierce_vtk::ThicknessSettings settings;
+  settings.method = this->Method;
+  settings.sample_at = this->SampleAt;
+  settings.max_distance = this->MaxDistance;
+  settings.min_thickness = this->MinThickness;
+  settings.cone_rays = this->ConeRays;
+  settings.cone_angle = this->ConeAngle;
+  settings.cone_aggregate = this->ConeAggregate;
+
+  pierce_vtk::ProgressBridge progress(this, 0.05, 1.0);
+  pierce::analysis::ThicknessResult result;
+  try
+  {
+    const pierce::Accel accel(surfaces.scene);
+    this->UpdateProgress(0.05);
+    result = pierce::analysis::compute_thickness(
+      accel, pierce_vtk::ToThicknessOptions(settings), progress.Callback());
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  if (!result.completed || progress.CheckAbort())
+  {
+    return 1; // aborted: the executive hands out empty outputs
+  }
+  pierce_vtk::AttachThickness(result, surfaces);
+  vtkDataObject* output = vtkDataObject::GetData(outputVector, 0);
+  pierce_vtk::StoreSurfaces(surfaces, input, output);
+  pierce_vtk::AddSolidNames(surfaces, output->GetFieldData());
+  pierce_vtk::WriteThicknessTable(result, vtkTable::GetData(outputVector, 1));
+  return 1;
+}
+
+void vtkPierceThickness::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Method: " << this->Method << "\n";
+  os << indent << "SampleAt: " << this->SampleAt << "\n";
+  os << indent << "MaxDistance: " << this->MaxDistance << "\n";
+  os << indent << "MinThickness: " << this->MinThickness << "\n";
+  os << indent << "ConeRays: " << this->ConeRays << "\n";
+  os << indent << "ConeAngle: " << this->ConeAngle << "\n";
+  os << indent << "ConeAggregate: " << this->ConeAggregate << "\n";
+}
