@@ -57,9 +57,10 @@ void print_details(const Ray& r, const std::vector<Hit>& got, const oracle::Orac
   std::fprintf(stderr, "\n  oracle:");
   for (const auto& h : want.hits)
     std::fprintf(stderr, " (%u,%u,t=%.9g,%s)", h.geom, h.prim, h.t_approx, h.enter ? "in" : "out");
-  std::fprintf(stderr, "\n  near:");
-  for (const auto& n : want.near)
-    std::fprintf(stderr, " (%u,%u,%s,%s)", n.geom, n.prim, n.hit ? "hit" : "miss", n.shear_exact ? "exact" : "INEXACT");
+  std::fprintf(stderr, "\n  outside the exact class:");
+  for (const auto& n : want.outside)
+    std::fprintf(stderr, " (%u,%u,%s,kernel view %s)", n.geom, n.prim, n.hit ? "hit" : "miss",
+                 n.view_known ? (n.view_hit ? "hit" : "miss") : "t near tmin/tmax");
   std::fprintf(stderr, "\n");
 }
 
@@ -121,12 +122,17 @@ int main(int argc, char** argv) {
       }
       if (!od) od = std::make_unique<oracle::Oracle<double>>(c.scene);
       want_d.push_back(od->trace(c.rays[i]));
-      fi.outside_class += want_d[i].near_not_shear_exact();
+      fi.outside_class += want_d[i].outside.size();
     }
     for (std::size_t i = 0; i < c.rays.size(); ++i) {
       fi.expected_float += want_f[i].hits.size();
       fi.expected_input += want_d[i].hits.size();
-      fi.outside_class += want_f[i].near_not_shear_exact();
+      fi.outside_class += want_f[i].outside.size();
+      if (verbose && want_f[i].outside.size()) {
+        std::fprintf(stderr, "%s [%s] ray %zu has decisions outside the exact class (float)\n", c.family.c_str(),
+                     c.name.c_str(), i);
+        print_details(c.rays[i], {}, want_f[i]);
+      }
     }
 
     for (KernelKind k : kernels) {

@@ -10,5 +10,10 @@ namespace pierce::cli {
 using Register = std::function<std::function<int()>(CLI::App& app)>;
 
 std::function<int()> register_hits(CLI::App& app);
+std::function<int()> register_info(CLI::App& app);
+std::function<int()> register_thickness(CLI::App& app);
+std::function<int()> register_overlaps(CLI::App& app);
+std::function<int()> register_shot(CLI::App& app);
+std::function<int()> register_gqa(CLI::App& app);
 
 }  // namespace pierce::cli

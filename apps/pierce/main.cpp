@@ -9,7 +9,8 @@ int main(int argc, char** argv) {
   CLI::App app{"Pierce: exact multi-hit ray traversal"};
   app.require_subcommand(1);
   std::vector<std::pair<CLI::App*, std::function<int()>>> commands;
-  for (auto reg : {pierce::cli::register_hits}) {
+  for (auto reg : {pierce::cli::register_hits, pierce::cli::register_info, pierce::cli::register_thickness,
+                   pierce::cli::register_overlaps, pierce::cli::register_shot, pierce::cli::register_gqa}) {
     const std::size_t before = app.get_subcommands({}).size();
     auto run = reg(app);
     commands.emplace_back(app.get_subcommands({})[before], std::move(run));

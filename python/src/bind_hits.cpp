@@ -41,11 +41,18 @@ TieOrder tie_from_name(const std::string& name) {
 void bind_hits(pyb::module_& m) {
   PYBIND11_NUMPY_DTYPE(HitRecord, ray, t, geom, prim, u, v, ng, enter);
 
-  m.def("kernels", [] {
-    std::vector<std::string> names;
-    for (KernelKind k : kAllKernels) names.emplace_back(kernel_name(k));
-    return names;
-  }, "Names of every kernel; all but 'epsilon' are exact.");
+  m.def(
+      "kernels",
+      [](bool include_double) {
+        std::vector<std::string> names;
+        for (KernelKind k : kAllKernels) names.emplace_back(kernel_name(k));
+        if (include_double)
+          for (KernelKind k : kDoubleKernels) names.emplace_back(kernel_name(k));
+        return names;
+      },
+      pyb::arg("include_double") = false,
+      "Names of the kernels; all but 'epsilon' are exact and agree. include_double adds the kernels on a\n"
+      "double-precision BVH, whose answers can differ where the input is not representable in float.");
   m.def("is_exact", [](const std::string& name) { return is_exact(kernel_from_name(name)); }, pyb::arg("kernel"));
 
   m.def(

@@ -376,9 +376,15 @@ std::vector<Case> near_coplanar(const Options& o) {
       std::vector<Vec3d> t = concat(targets_of({quad(0, 0, 1, 1, h, false)}), grid_points(0, 1, 0, 1, h, 0.125));
       std::erase_if(t, [](const Vec3d& p) { return !is_float(p); });
       for (int i = 0; i < o.rays_per_case; ++i) {
-        const Vec3d p = t[std::size_t(pick(s, int(t.size())))];
+        Vec3d p = t[std::size_t(pick(s, int(t.size())))];
         const int sign = pick(s, 2) ? 1 : -1;
-        Vec3d d = pick(s, 2) ? dyadic_direction(s, 2, sign) : Vec3d{0, 0, double(sign)};
+        Vec3d d{0, 0, double(sign)};
+        if (pick(s, 2)) {
+          // Tilted rays only through points off every edge: the shear mixes the one-ulp offset
+          // into x and y, which float cannot hold exactly next to an edge.
+          d = dyadic_direction(s, 2, sign);
+          p = {(1 + 2 * pick(s, 8)) / 16.0, (1 + 2 * pick(s, 8)) / 16.0, h};
+        }
         Ray r;
         r.org = p - d * std::min(h / 4, 0.25);  // close: the kernels' differences stay exact
         r.dir = d;
@@ -430,23 +436,19 @@ std::vector<Case> slivers(const Options& o) {
                          Vec3d{2.5, 0.5, 0}, Vec3d{3, ulp / 2, 0}, Vec3d{0.5, 2.5, 0.5}})
     for (int i = 0; i < 6; ++i) t.push_back(p);
   // Origins one unit from the target: far origins would round the one-ulp offsets away in the
-  // kernels' differences (outside the exact class).
+  // kernels' differences.
   std::erase_if(t, [](const Vec3d& p) { return !is_float(p); });
   std::uint64_t s = o.seed * 577 + 501;
   std::vector<Ray> rays;
   for (int i = 0; i < 2 * o.rays_per_case; ++i) {
     const Vec3d p = t[std::size_t(pick(s, int(t.size())))];
     const int axis = pick(s, 3), sign = pick(s, 2) ? 1 : -1;
+    // Axis-aligned only: a tilted ray mixes the one-ulp offsets with unit coordinates in the
+    // kernels' shear, which float cannot hold exactly (outside the exact class).
     Vec3d d;
     d[axis] = sign;
-    if (pick(s, 2)) d = dyadic_direction(s, axis, sign);
     Ray r;
     r.org = p - d;
-    if (!is_float(r.org)) {  // keep the ray exactly through p
-      d = Vec3d{};
-      d[axis] = sign;
-      r.org = p - d;
-    }
     r.dir = d;
     rays.push_back(r);
   }
@@ -483,8 +485,16 @@ std::vector<Case> scaled_translated(const Options& o) {
     char name[96];
     std::snprintf(name, sizeof name, "scale %g, offset %g", v.scale, v.offset.x);
     const bool fe = v.round_to_float;
-    std::vector<Ray> rays = rays_through_targets(targets_of(m), bounds_of(m), o.rays_per_case, o.seed + 601 + k++,
-                                                 v.tilted, fe);
+    // Decimal scales: rays through vertices only; an edge midpoint's offsets to the other
+    // corners are not exact in float.
+    std::vector<Vec3d> targets;
+    if (v.tilted) {
+      targets = targets_of(m);
+    } else {
+      for (const Mesh& x : m) targets.insert(targets.end(), x.vertices.begin(), x.vertices.end());
+    }
+    std::vector<Ray> rays =
+        rays_through_targets(targets, bounds_of(m), o.rays_per_case, o.seed + 601 + k++, v.tilted, fe);
     out.push_back(make_case(fe ? "scaled 1e-6..1e6, offsets to 1e6" : "1e-6/1e-3 features at offset 1e6 (double input)",
                             name, m, rays, fe));
   }
@@ -551,6 +561,43 @@ std::vector<Case> segment_ends(const Options& o) {
   return out;
 }
 
+std::vector<Case> double_rounding(const Options& o) {
+  // For the double kernels: triangles whose edge passes within one rounding of the ray, so that
+  // the double products in the edge function round to a false zero or the wrong sign. The ray is
+  // the z axis; triangle i lies at z = i. Input in double (not representable in float).
+  std::vector<Case> out;
+  std::uint64_t s = o.seed * 2654435761u + 77;
+  auto unit = [&] { return double(splitmix(s) >> 11) * 0x1p-53; };  // [0, 1) with 53 random bits
+  std::vector<Mesh> meshes;
+  for (int i = 0; int(meshes.size()) < 4 * o.rays_per_case && i < 100000; ++i) {
+    // Edge b-c through (almost) the origin: c is -lambda * b rounded to double.
+    const Vec3d b{0.5 + unit(), -(0.5 + unit()), 0};
+    const double lambda = 0.5 + unit();
+    const Vec3d c{-lambda * b.x, -lambda * b.y, 0};
+    const double p = c.x * b.y, q = c.y * b.x;
+    // Keep edges where the rounded edge function is zero or tiny (the exact one is not
+    // computed here: the oracle decides).
+    if (std::abs(p - q) > 0x1p-50 * (std::abs(p) + std::abs(q))) continue;
+    // The third corner on either side of the edge, far from it.
+    const Vec3d nrm{-(c.y - b.y), c.x - b.x, 0};
+    const double side = (meshes.size() % 2) ? 1.0 : -1.0;
+    Mesh m;
+    m.name = "edge" + std::to_string(meshes.size());
+    const double z = double(meshes.size());
+    m.vertices = {Vec3d{b.x, b.y, z}, Vec3d{c.x, c.y, z}, (b + c) * 0.5 + nrm * side + Vec3d{0, 0, z}};
+    m.triangles = {{0, 1, 2}};
+    meshes.push_back(m);
+  }
+  std::vector<Ray> rays;
+  for (const double x : {0.0, -0.0}) {  // the same axis ray, both ways, and from either end
+    rays.push_back({{x, 0, -1}, {0, 0, 1}, 0, std::numeric_limits<double>::infinity()});
+    rays.push_back({{x, 0, double(meshes.size())}, {0, 0, -1}, 0, std::numeric_limits<double>::infinity()});
+  }
+  out.push_back(make_case("edges within one double rounding (double input)", std::to_string(meshes.size()) + " triangles",
+                          meshes, rays, false));
+  return out;
+}
+
 std::vector<Case> invalid_rays(const Options&) {
   std::vector<Case> out;
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
@@ -582,6 +629,7 @@ std::vector<Case> corpus(const Options& o) {
   add(near_coplanar(o));
   add(slivers(o));
   add(scaled_translated(o));
+  add(double_rounding(o));
   add(segment_ends(o));
   add(invalid_rays(o));
   add(deep_stack(o));

@@ -48,6 +48,7 @@ std::vector<Case> slivers(const Options& o);               // slivers and zero-a
 std::vector<Case> scaled_translated(const Options& o);     // 1e-6 .. 1e6, offsets up to 1e6
 std::vector<Case> deep_stack(const Options& o);            // o.deep_layers layers
 std::vector<Case> segment_ends(const Options& o);          // rays starting / ending exactly on a surface
+std::vector<Case> double_rounding(const Options& o);       // edges within one double rounding of the ray
 std::vector<Case> invalid_rays(const Options& o);          // NaN/Inf/zero directions, empty ranges, empty scene
 
 // Every family, in report order.

@@ -12,22 +12,30 @@ namespace pierce::oracle {
 
 namespace {
 
-// Safety factor on the rounding bounds that decide which decisions are "near" (tolerant mode
-// only; the exact decisions never depend on it).
+// Safety factor on the rounding bound of a kernel's t (decides which hits are "near" tmin/tmax,
+// and which pairs of t may swap in kernel_view comparisons; never an exact decision).
 constexpr double kTolFactor = 16.0;
 
 std::uint64_t key(std::uint32_t geom, std::uint32_t prim) { return (std::uint64_t(geom) << 32) | prim; }
 
-// Per-ray data of one vertex: a = p - o exactly, and its scaled sheared coordinates
-// X = a_kx d_kz - d_kx a_kz, Y = a_ky d_kz - d_ky a_kz (the true sheared coordinates times d_kz).
+// Per-ray data of one vertex. a = p - o exactly; X = a_kx d_kz - d_kx a_kz and
+// Y = a_ky d_kz - d_ky a_kz are the true sheared coordinates times d_kz. kX, kY are the
+// kernel's sheared coordinates, a_kx - sx a_kz with every operation rounded to T, held exactly.
 struct VertexData {
-  Exact akz, X, Y;
+  Exact akz, X, Y, kX, kY;
   double mag = 0;  // |a_kx| + |a_ky| + (|sx| + |sy|) |a_kz|: scale of the rounding in its shear
   double akz_d = 0;
-  int shear_exact = -1;  // -1: not audited yet
 };
 
-int robust_sign(double e, double tol) { return e > tol ? 1 : (e < -tol ? -1 : 0); }
+// The kernels' tie rule: sign of the edge function e of (p, q) as if the ray passed through
+// (eps, eps^2) of the sheared plane. `s` is +-1: the sign relating the coordinates given to the
+// sheared ones (d_kz's sign for X/Y, +1 for the kernel's own).
+int perturbed(const Exact& e, const Exact& px, const Exact& py, const Exact& qx, const Exact& qy, int s) {
+  if (int r = e.sign()) return r;
+  if (int r = (py - qy).sign()) return r * s;
+  if (int r = (qx - px).sign()) return r * s;
+  return 0;
+}
 
 }  // namespace
 
@@ -67,6 +75,8 @@ OracleResult Oracle<T>::trace(const Ray& ray, HitOrder order) const {
   res.ray_valid = tr.valid();
   if (!res.ray_valid) return res;
   if (std::isnan(tr.tmin) || std::isnan(tr.tmax)) return res;  // no t satisfies tmin <= t <= tmax
+  // tmin = +inf or tmax = -inf: empty range.
+  if ((std::isinf(tr.tmin) && tr.tmin > 0) || (std::isinf(tr.tmax) && tr.tmax < 0)) return res;
   const int kx = tr.kx, ky = tr.ky, kz = tr.kz;
   const Exact O[3] = {Exact(double(tr.org.x)), Exact(double(tr.org.y)), Exact(double(tr.org.z))};
   const Exact D[3] = {Exact(double(tr.dir.x)), Exact(double(tr.dir.y)), Exact(double(tr.dir.z))};
@@ -78,8 +88,6 @@ OracleResult Oracle<T>::trace(const Ray& ray, HitOrder order) const {
   const Exact tmin_x = has_tmin ? Exact(double(tr.tmin)) : Exact();
   const Exact tmax_x = has_tmax ? Exact(double(tr.tmax)) : Exact();
   const Exact t_limit(double(std::numeric_limits<T>::max()));
-  // tmin = +inf or tmax = -inf: empty range.
-  if ((std::isinf(tr.tmin) && tr.tmin > 0) || (std::isinf(tr.tmax) && tr.tmax < 0)) return res;
 
   std::vector<VertexData> vd(verts_.size());
   for (std::size_t i = 0; i < verts_.size(); ++i) {
@@ -89,97 +97,77 @@ OracleResult Oracle<T>::trace(const Ray& ray, HitOrder order) const {
     d.akz = a[kz];
     d.X = a[kx] * D[kz] - D[kx] * a[kz];
     d.Y = a[ky] * D[kz] - D[ky] * a[kz];
+    const Vec3<T> ak = v.p - tr.org;  // the kernel's arithmetic (contraction is off here too)
+    d.kX = Exact(double(ak[kx] - tr.sx * ak[kz]));
+    d.kY = Exact(double(ak[ky] - tr.sy * ak[kz]));
     const double ax = a[kx].to_double(), ay = a[ky].to_double();
     d.akz_d = a[kz].to_double();
     d.mag = std::abs(ax) + std::abs(ay) + (std::abs(sx) + std::abs(sy)) * std::abs(d.akz_d);
   }
-  // Audit: does the kernel's arithmetic in T (a = p - o; x = a_kx - sx a_kz) give the exact
-  // sheared coordinates of this vertex? Only asked for near decisions.
-  auto shear_exact = [&](std::uint32_t vi) {
-    VertexData& d = vd[vi];
-    if (d.shear_exact < 0) {
-      const Vec3<T> a = verts_[vi].p - tr.org;
-      const T ax = a[kx] - tr.sx * a[kz], ay = a[ky] - tr.sy * a[kz];
-      d.shear_exact = (Exact(double(ax)) * D[kz] == d.X && Exact(double(ay)) * D[kz] == d.Y) ? 1 : 0;
-    }
-    return d.shear_exact == 1;
-  };
-
-  // The kernels' perturbed_sign, on exact values: the ray passes through (eps, eps^2) of the
-  // sheared plane. Coordinate comparisons of the true sheared points p/d_kz, q/d_kz.
-  auto perturbed = [&](const Exact& e, const VertexData& p, const VertexData& q) {
-    if (int s = e.sign()) return s;
-    if (int s = (p.Y - q.Y).sign()) return s * sdz;
-    if (int s = (q.X - p.X).sign()) return s * sdz;
-    return 0;
-  };
 
   for (const Tri3& t : tris_) {
     const VertexData &A = vd[t.v[0]], &B = vd[t.v[1]], &C = vd[t.v[2]];
-    // Edge functions times d_kz^2 (same signs as the kernel's U, V, W on exact coordinates).
+    // Edge functions times d_kz^2: the same signs as the kernel's U, V, W on exact coordinates.
     const Exact U = C.X * B.Y - C.Y * B.X;
     const Exact V = A.X * C.Y - A.Y * C.X;
     const Exact W = B.X * A.Y - B.Y * A.X;
-    const int su = perturbed(U, C, B), sv = perturbed(V, A, C), sw = perturbed(W, B, A);
+    const int su = perturbed(U, C.X, C.Y, B.X, B.Y, sdz), sv = perturbed(V, A.X, A.Y, C.X, C.Y, sdz),
+              sw = perturbed(W, B.X, B.Y, A.X, A.Y, sdz);
     const bool edges_pass = su != 0 && su == sv && su == sw;
+    // The same decision on the kernel's rounded sheared coordinates.
+    const int ku = perturbed(C.kX * B.kY - C.kY * B.kX, C.kX, C.kY, B.kX, B.kY, 1);
+    const int kv = perturbed(A.kX * C.kY - A.kY * C.kX, A.kX, A.kY, C.kX, C.kY, 1);
+    const int kw = perturbed(B.kX * A.kY - B.kY * A.kX, B.kX, B.kY, A.kX, A.kY, 1);
+    const bool view_pass = ku != 0 && ku == kv && ku == kw;
 
-    // Which way could a kernel's rounding push this decision? (tolerant comparisons only)
-    const double d2 = dkz * dkz;
-    const double Ud = U.to_double() / d2, Vd = V.to_double() / d2, Wd = W.to_double() / d2;
-    const int ru = robust_sign(Ud, kTolFactor * u * C.mag * B.mag);
-    const int rv = robust_sign(Vd, kTolFactor * u * A.mag * C.mag);
-    const int rw = robust_sign(Wd, kTolFactor * u * B.mag * A.mag);
-    const bool robust_miss = (ru > 0 || rv > 0 || rw > 0) && (ru < 0 || rv < 0 || rw < 0);
-    const bool robust_edges = ru != 0 && ru == rv && ru == rw;
-    bool near = !robust_miss && !robust_edges;
-    bool near_t = false;
-    // The kernel decides a near edge function exactly when both its endpoints' sheared
-    // coordinates are exact (robust ones survive its rounding); t depends on all three.
-    auto note_near = [&](bool hit) {
-      const bool e0 = shear_exact(t.v[0]), e1 = shear_exact(t.v[1]), e2 = shear_exact(t.v[2]);
-      bool exact = !near_t || (e0 && e1 && e2);
-      if (!robust_miss) {
-        if (ru == 0) exact = exact && e1 && e2;
-        if (rv == 0) exact = exact && e2 && e0;
-        if (rw == 0) exact = exact && e0 && e1;
-      }
-      res.near.push_back({t.geom, t.prim, hit, exact});
-    };
-    if (!edges_pass) {
-      if (near) note_near(false);
-      continue;
-    }
-
-    // Plane crossing: t = ((v0 - o) . n) / (d . n), n = (v1 - v0) x (v2 - v0).
-    const Vertex &P0 = verts_[t.v[0]], &P1 = verts_[t.v[1]], &P2 = verts_[t.v[2]];
-    const Exact e1[3] = {P1.x[0] - P0.x[0], P1.x[1] - P0.x[1], P1.x[2] - P0.x[2]};
-    const Exact e2[3] = {P2.x[0] - P0.x[0], P2.x[1] - P0.x[1], P2.x[2] - P0.x[2]};
-    const Exact n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-    const Exact den = D[0] * n[0] + D[1] * n[1] + D[2] * n[2];
-    if (den.is_zero()) {  // the ray lies in the triangle's plane (or the triangle is degenerate)
-      if (near) note_near(false);
-      continue;
-    }
-    const Exact num = (P0.x[0] - O[0]) * n[0] + (P0.x[1] - O[1]) * n[1] + (P0.x[2] - O[2]) * n[2];
     ExactHit h;
-    h.geom = t.geom;
-    h.prim = t.prim;
-    h.enter = den.sign() < 0;
-    h.t = {num, den};
-    h.t_approx = h.t.to_double();
-    const double z = std::max({std::abs(A.akz_d), std::abs(B.akz_d), std::abs(C.akz_d)}) / std::abs(dkz);
-    const double m2 = A.mag * B.mag + B.mag * C.mag + C.mag * A.mag;
-    const double det = std::abs(Ud + Vd + Wd);
-    h.t_tol = kTolFactor * u * (std::abs(h.t_approx) + z * (1.0 + (det > 0 ? m2 / det : 1e300)));
-    // A distance the kernel's precision cannot represent is never reported (a tiny direction
-    // can put every hit beyond T's largest finite value).
-    const bool in_range = (!has_tmin || h.t.compare_to(tmin_x) >= 0) && (!has_tmax || h.t.compare_to(tmax_x) <= 0) &&
-                          h.t.compare_to(t_limit) <= 0 && h.t.compare_to(-t_limit) >= 0;
-    if ((has_tmin && std::abs(h.t_approx - double(tr.tmin)) <= h.t_tol) ||
-        (has_tmax && std::abs(h.t_approx - double(tr.tmax)) <= h.t_tol))
-      near = near_t = true;
-    if (near) note_near(in_range);
-    if (in_range) res.hits.push_back(std::move(h));
+    bool in_range = false, near_t = false;
+    if (edges_pass || view_pass) {
+      // Plane crossing: t = ((v0 - o) . n) / (d . n), n = (v1 - v0) x (v2 - v0).
+      const Vertex &P0 = verts_[t.v[0]], &P1 = verts_[t.v[1]], &P2 = verts_[t.v[2]];
+      const Exact e1[3] = {P1.x[0] - P0.x[0], P1.x[1] - P0.x[1], P1.x[2] - P0.x[2]};
+      const Exact e2[3] = {P2.x[0] - P0.x[0], P2.x[1] - P0.x[1], P2.x[2] - P0.x[2]};
+      const Exact n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                          e1[0] * e2[1] - e1[1] * e2[0]};
+      const Exact den = D[0] * n[0] + D[1] * n[1] + D[2] * n[2];
+      // den == 0: the ray lies in the triangle's plane, or the triangle has zero area. The
+      // perturbed signs of such a triangle can never all agree, so this only guards.
+      if (!den.is_zero()) {
+        const Exact num = (P0.x[0] - O[0]) * n[0] + (P0.x[1] - O[1]) * n[1] + (P0.x[2] - O[2]) * n[2];
+        h.geom = t.geom;
+        h.prim = t.prim;
+        h.enter = den.sign() < 0;
+        h.t = {num, den};
+        h.t_approx = h.t.to_double();
+        const double z = std::max({std::abs(A.akz_d), std::abs(B.akz_d), std::abs(C.akz_d)}) / std::abs(dkz);
+        const double m2 = A.mag * B.mag + B.mag * C.mag + C.mag * A.mag;
+        const double det = std::abs((U.to_double() + V.to_double() + W.to_double()) / (dkz * dkz));
+        h.t_tol = kTolFactor * u * (std::abs(h.t_approx) + z * (1.0 + (det > 0 ? m2 / det : 1e300)));
+        // A distance the kernel's precision cannot represent is never reported (a tiny
+        // direction can put every hit beyond T's largest finite value).
+        in_range = (!has_tmin || h.t.compare_to(tmin_x) >= 0) && (!has_tmax || h.t.compare_to(tmax_x) <= 0) &&
+                   h.t.compare_to(t_limit) <= 0 && h.t.compare_to(-t_limit) >= 0;
+        near_t = (has_tmin && std::abs(h.t_approx - double(tr.tmin)) <= h.t_tol) ||
+                 (has_tmax && std::abs(h.t_approx - double(tr.tmax)) <= h.t_tol);
+        if (near_t) {
+          // The kernel's t is exact where the triangle is perpendicular to an axis the ray is
+          // not parallel to: it is clamped to the slab value fl((v_k - o_k) * inv_k).
+          for (int k = 0; k < 3 && near_t; ++k) {
+            const T vk = verts_[t.v[0]].p[k];
+            if (tr.zero[k] || verts_[t.v[1]].p[k] != vk || verts_[t.v[2]].p[k] != vk) continue;
+            const T slab_t = (vk - tr.org[k]) * tr.inv[k];
+            if (std::isfinite(slab_t) && h.t.compare_to(Exact(double(slab_t))) == 0) near_t = false;
+          }
+        }
+      }
+    }
+    const bool hit = edges_pass && in_range;
+    if (edges_pass != view_pass) {
+      res.outside.push_back({t.geom, t.prim, hit, true, view_pass && in_range});
+    } else if (edges_pass && near_t) {
+      res.outside.push_back({t.geom, t.prim, hit, false, false});
+    }
+    if (hit) res.hits.push_back(std::move(h));
   }
 
   std::sort(res.hits.begin(), res.hits.end(), [&](const ExactHit& a, const ExactHit& b) {
@@ -197,13 +185,22 @@ template class Oracle<double>;
 Discrepancy compare(const std::vector<Hit>& kernel, const OracleResult& oracle, HitOrder /*order*/,
                     CompareMode mode, int ulp_bits) {
   Discrepancy d;
-  d.expected = oracle.hits.size();
-  std::unordered_map<std::uint64_t, std::size_t> rank;
+  std::unordered_map<std::uint64_t, std::size_t> rank;  // exact hits by identity
   for (std::size_t i = 0; i < oracle.hits.size(); ++i) rank[key(oracle.hits[i].geom, oracle.hits[i].prim)] = i;
+  // Expected presence of every identity whose answer differs from "absent".
+  std::unordered_map<std::uint64_t, bool> expect;
+  for (const ExactHit& h : oracle.hits) expect[key(h.geom, h.prim)] = true;
   std::unordered_set<std::uint64_t> skip;
-  if (mode == CompareMode::tolerant)
-    for (const NearDecision& n : oracle.near) skip.insert(key(n.geom, n.prim));
+  for (const OutsideDecision& o : oracle.outside) {
+    const std::uint64_t k = key(o.geom, o.prim);
+    if (mode == CompareMode::kernel_view && o.view_known) {
+      expect[k] = o.view_hit;
+    } else {
+      skip.insert(k);
+    }
+  }
   d.unchecked = skip.size();
+  for (const auto& [k, present] : expect) d.expected += present && !skip.count(k);
 
   std::unordered_map<std::uint64_t, std::size_t> seen;
   std::size_t prev = std::numeric_limits<std::size_t>::max();
@@ -213,11 +210,14 @@ Discrepancy compare(const std::vector<Hit>& kernel, const OracleResult& oracle, 
       ++d.duplicated;
       continue;
     }
-    const auto it = rank.find(k);
-    if (it == rank.end()) {
-      if (!skip.count(k)) ++d.extra;
+    if (skip.count(k)) continue;
+    const auto e = expect.find(k);
+    if (e == expect.end() || !e->second) {
+      ++d.extra;
       continue;
     }
+    const auto it = rank.find(k);
+    if (it == rank.end()) continue;  // present only in the kernel's view: no exact t to check
     const ExactHit& x = oracle.hits[it->second];
     if (h.enter != x.enter) ++d.wrong_enter;
     // t error, exactly: |t_k - num/den| in ulps of T at the exact t.
@@ -232,10 +232,8 @@ Discrepancy compare(const std::vector<Hit>& kernel, const OracleResult& oracle, 
     }
     prev = it->second;
   }
-  for (const ExactHit& x : oracle.hits) {
-    const std::uint64_t k = key(x.geom, x.prim);
-    if (!seen.count(k) && !skip.count(k)) ++d.missed;
-  }
+  for (const auto& [k, present] : expect)
+    if (present && !seen.count(k) && !skip.count(k)) ++d.missed;
   return d;
 }
 

@@ -3,6 +3,7 @@
 // shear constants for the watertight triangle test (Woop, Benthin, Wald 2013), and the
 // absolute padding used to keep box and triangle decisions consistent.
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "pierce/ray.h"
@@ -36,8 +37,12 @@ struct TraversalRay {
     tr.sx = tr.dir[tr.kx] / tr.dir[tr.kz];
     tr.sy = tr.dir[tr.ky] / tr.dir[tr.kz];
     tr.sz = T(1) / tr.dir[tr.kz];
+    // Round the segment inwards: hit distances are values of T, so t >= tmin holds for the
+    // caller's double tmin exactly when it holds for the next T up (and likewise for tmax).
     tr.tmin = T(r.tmin);
     tr.tmax = T(r.tmax);
+    if (double(tr.tmin) < r.tmin) tr.tmin = std::nextafter(tr.tmin, std::numeric_limits<T>::infinity());
+    if (double(tr.tmax) > r.tmax) tr.tmax = std::nextafter(tr.tmax, -std::numeric_limits<T>::infinity());
     const double dmax = std::max({std::abs(r.dir.x), std::abs(r.dir.y), std::abs(r.dir.z)});
     // 2^-20 of the t-span of the scene as seen from this origin: far above the rounding of
     // the triangle test's projection, far below anything that costs traversal work.

@@ -5,8 +5,10 @@
 // through a shared edge or vertex of a consistently meshed surface crosses exactly one
 // of the triangles around it, whatever their winding.
 #include <cstdint>
+#include <limits>
 #include <utility>
 
+#include "pierce/exact_sign.h"
 #include "pierce/slab.h"
 #include "pierce/traversal_ray.h"
 
@@ -75,9 +77,18 @@ inline bool intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const Vec3<T>
       su = U > T(0) ? 1 : -1, sv = V > T(0) ? 1 : -1, sw = W > T(0) ? 1 : -1;
     }
   } else {
-    su = detail::perturbed_sign(U, cx, cy, bx, by);
-    sv = detail::perturbed_sign(V, ax, ay, cx, cy);
-    sw = detail::perturbed_sign(W, bx, by, ax, ay);
+    // Double products are rounded: near zero an edge function can round to a false zero or the
+    // wrong sign, so its sign is taken exactly (error-free products, exact_sign.h).
+    su = detail::perturbed_sign(exact::diff_of_products_sign(cx, by, cy, bx), cx, cy, bx, by);
+    sv = detail::perturbed_sign(exact::diff_of_products_sign(ax, cy, ay, cx), ax, ay, cx, cy);
+    sw = detail::perturbed_sign(exact::diff_of_products_sign(bx, ay, by, ax), bx, by, ax, ay);
+    // Rounded values of the wrong sign (or false zeros) would spoil det's sign for the facing:
+    // replace them by the smallest value of the exact sign. Only t of an almost edge-on
+    // triangle is affected, and t is clamped into the triangle's box below.
+    auto fix = [](T& e, int s) {
+      if (s != 0 && (e > T(0) ? 1 : (e < T(0) ? -1 : 0)) != s) e = T(s) * std::numeric_limits<T>::denorm_min();
+    };
+    if (su != 0 && su == sv && su == sw) fix(U, su), fix(V, sv), fix(W, sw);
   }
   if (su == 0 || su != sv || su != sw) return false;
 

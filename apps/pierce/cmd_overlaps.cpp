@@ -1,0 +1,277 @@
+// `pierce overlaps MODEL`: coplanar overlapping faces (exact and within --tol), Gribble et al.'s
+// coplanar-hit statistic, and solid-solid interference along rays, per solid pair; per-triangle
+// heat-map arrays in VTP.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <mutex>
+
+#include <nlohmann/json.hpp>
+
+#include "command.h"
+#include "interrupt.h"
+#include "model_args.h"
+#include "output_file.h"
+#include "pierce/analysis/overlaps.h"
+#include "pierce/error.h"
+#include "pierce/io/ray_source.h"
+#include "progress.h"
+#include "vtp_writer.h"
+
+namespace pierce::cli {
+
+namespace {
+
+using namespace pierce::analysis;
+
+struct OverlapsCli {
+  ModelArgs model;
+  double tol = 0;
+  std::string rays = "axes:n=128";
+  double ray_eps = 1e-5;
+  std::string kernel = "queue";
+  std::string out;
+  bool force = false, progress = false;
+};
+
+enum class Format { none, vtp, csv, json };
+
+Format format_of(const std::string& path) {
+  if (path.empty()) return Format::none;
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".vtp") return Format::vtp;
+  if (ext == ".csv") return Format::csv;
+  if (ext == ".json") return Format::json;
+  throw InputError(path + ": unknown output format (expected .vtp, .csv or .json)");
+}
+
+int cancelled() {
+  std::cerr << "pierce: cancelled\n";
+  return kExitCancelled;
+}
+
+// `axes:n=N`: N x N parallel rays along each of x, y and z; anything else as `pierce hits --rays`.
+std::vector<Ray> make_rays(const std::string& spec, const Scene& scene) {
+  const std::string prefix = "axes:n=";
+  if (spec.rfind("axes", 0) != 0) return load_rays(spec, scene);
+  char* end = nullptr;
+  const long n = spec.rfind(prefix, 0) == 0 ? std::strtol(spec.c_str() + prefix.size(), &end, 10) : 0;
+  if (!end || *end != '\0' || n <= 0 || n > 32768)
+    throw InputError("--rays '" + spec + "': expected axes:n=N with 0 < N <= 32768");
+  return axis_grid_rays(scene.bounds(), int(n));
+}
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+std::string num(double v) {
+  if (std::isnan(v)) return "nan";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+nlohmann::ordered_json vec(Vec3d p) { return {p.x, p.y, p.z}; }
+nlohmann::ordered_json maybe(double v) { return std::isnan(v) ? nlohmann::ordered_json() : nlohmann::ordered_json(v); }
+
+void write_csv(std::FILE* f, const Scene& s, const CoplanarReport& c, const RayOverlapReport& r) {
+  std::fputs("kind,solid_a,name_a,solid_b,name_b,count,exact,same_facing,opposite_facing,area,max_depth,penetration,x,y,z\n", f);
+  auto names = [&](std::uint32_t a, std::uint32_t b) {
+    return std::to_string(a) + "," + csv_field(s.geometry(a).name) + "," + std::to_string(b) + "," +
+           csv_field(s.geometry(b).name);
+  };
+  for (const InterferencePair& p : r.interferences)
+    std::fprintf(f, "interference,%s,%zu,,,,,%s,%s,%s,%s,%s\n", names(p.a, p.b).c_str(), p.count, num(p.max_depth).c_str(),
+                 num(p.penetration).c_str(), num(p.max_depth_entry.x).c_str(), num(p.max_depth_entry.y).c_str(),
+                 num(p.max_depth_entry.z).c_str());
+  for (const ContactPair& p : r.contacts)
+    std::fprintf(f, "contact,%s,%zu,,,,,,,%s,%s,%s\n", names(p.a, p.b).c_str(), p.count, num(p.where.x).c_str(),
+                 num(p.where.y).c_str(), num(p.where.z).c_str());
+  for (const CoplanarSolidPair& p : c.solid_pairs)
+    std::fprintf(f, "coplanar,%s,%zu,%zu,%zu,%zu,%s,,,%s,%s,%s\n", names(p.a, p.b).c_str(), p.pairs, p.exact_pairs,
+                 p.same_facing, p.opposite_facing, num(p.area).c_str(), num(p.where.x).c_str(), num(p.where.y).c_str(),
+                 num(p.where.z).c_str());
+}
+
+void write_json(std::FILE* f, const Scene& s, const OverlapsCli& o, const CoplanarReport& c, const RayOverlapReport& r) {
+  nlohmann::ordered_json j;
+  j["models"] = o.model.models;
+  j["solids"] = nlohmann::ordered_json::array();
+  for (std::uint32_t g = 0; g < s.geometries().size(); ++g)
+    j["solids"].push_back({{"id", g}, {"name", s.geometry(g).name}, {"source", s.geometry(g).source}});
+  j["rays"] = o.rays;
+  j["coplanar_hits"] = {{"rays", r.coplanar.rays},
+                        {"rays_hitting", r.coplanar.rays_hitting},
+                        {"rays_equal_t", r.coplanar.rays_equal_t},
+                        {"rays_within_epsilon", r.coplanar.rays_within_eps},
+                        {"epsilon", r.coplanar.epsilon},
+                        {"share_equal_t", r.coplanar.share_equal()},
+                        {"share_within_epsilon", r.coplanar.share_within_eps()}};
+  auto& inter = j["interferences"] = nlohmann::ordered_json::array();
+  for (const InterferencePair& p : r.interferences)
+    inter.push_back({{"solid_a", p.a},
+                     {"solid_b", p.b},
+                     {"count", p.count},
+                     {"max_depth", p.max_depth},
+                     {"max_depth_entry", vec(p.max_depth_entry)},
+                     {"max_depth_ray", p.max_depth_ray},
+                     {"axis_max_depth", {maybe(p.axis_max_depth[0]), maybe(p.axis_max_depth[1]), maybe(p.axis_max_depth[2])}},
+                     {"penetration", maybe(p.penetration)}});
+  auto& cont = j["contacts"] = nlohmann::ordered_json::array();
+  for (const ContactPair& p : r.contacts)
+    cont.push_back({{"solid_a", p.a}, {"solid_b", p.b}, {"rays", p.count}, {"where", vec(p.where)}});
+  j["coplanar_tolerance"] = c.tolerance;
+  auto& cop = j["coplanar"] = nlohmann::ordered_json::array();
+  for (const CoplanarSolidPair& p : c.solid_pairs)
+    cop.push_back({{"solid_a", p.a},
+                   {"solid_b", p.b},
+                   {"triangle_pairs", p.pairs},
+                   {"exact", p.exact_pairs},
+                   {"same_facing", p.same_facing},
+                   {"opposite_facing", p.opposite_facing},
+                   {"area", p.area},
+                   {"where", vec(p.where)}});
+  auto& pairs = j["coplanar_triangle_pairs"] = nlohmann::ordered_json::array();
+  for (const CoplanarPair& p : c.pairs)
+    pairs.push_back({{"solid_a", p.geom_a}, {"triangle_a", p.prim_a}, {"solid_b", p.geom_b}, {"triangle_b", p.prim_b},
+                     {"area", p.area}, {"exact", p.exact}, {"same_facing", p.same_facing}, {"centroid", vec(p.centroid)}});
+  auto& iv = j["interference_intervals"] = nlohmann::ordered_json::array();
+  for (const Interference& x : r.intervals)
+    iv.push_back({{"ray", x.ray}, {"solid_a", x.a}, {"solid_b", x.b}, {"depth", x.depth}, {"entry", vec(x.entry)},
+                  {"exit", vec(x.exit)}});
+  const std::string text = j.dump(1);
+  std::fwrite(text.data(), 1, text.size(), f);
+  std::fputc('\n', f);
+}
+
+void write_vtp_result(std::FILE* f, const Scene& s, const TriangleOverlapArrays& a) {
+  PolyData d;
+  for (const Geometry& g : s.geometries()) {
+    const auto base = std::uint32_t(d.points.size());
+    d.points.insert(d.points.end(), g.vertices.begin(), g.vertices.end());
+    for (const Tri& t : g.triangles) d.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  }
+  std::vector<std::int32_t> solid(a.solid.begin(), a.solid.end());
+  d.cell_data.emplace_back("OverlapCount", a.overlap_count);
+  d.cell_data.emplace_back("CoplanarPartner", a.coplanar_partner);
+  d.cell_data.emplace_back("SolidId", std::move(solid));
+  d.cell_data.emplace_back("CoplanarCount", a.coplanar_count);
+  d.cell_data.emplace_back("CoplanarHits", a.coplanar_hits);
+  d.cell_data.emplace_back("InterferenceHits", a.interference_hits);
+  if (!write_vtp(f, d)) throw std::runtime_error("write error");
+}
+
+void print_summary(const Scene& s, const CoplanarReport& c, const RayOverlapReport& r, const OverlapsCli& o) {
+  std::printf("%zu rays (%s), %zu hit something: %.3f%% meet crossings at equal t, %.3f%% within %g\n",
+              r.coplanar.rays, o.rays.c_str(), r.coplanar.rays_hitting, 100 * r.coplanar.share_equal(),
+              100 * r.coplanar.share_within_eps(), r.coplanar.epsilon);
+  if (r.interferences.empty()) std::printf("no interference between solids along the rays\n");
+  for (const InterferencePair& p : r.interferences) {
+    std::printf("INTERFERENCE %s <-> %s: %zu ray intervals, max depth %g at (%g, %g, %g)", solid_label(s, p.a).c_str(),
+                solid_label(s, p.b).c_str(), p.count, p.max_depth, p.max_depth_entry.x, p.max_depth_entry.y,
+                p.max_depth_entry.z);
+    if (!std::isnan(p.penetration)) std::printf(", penetration ~%g (smallest per-axis depth)", p.penetration);
+    std::printf("\n");
+  }
+  for (const ContactPair& p : r.contacts)
+    std::printf("contact %s <-> %s: touching faces crossed by %zu rays, e.g. at (%g, %g, %g)\n",
+                solid_label(s, p.a).c_str(), solid_label(s, p.b).c_str(), p.count, p.where.x, p.where.y, p.where.z);
+  for (const CoplanarSolidPair& p : c.solid_pairs) {
+    const bool self = p.a == p.b;
+    std::printf("coplanar %s%s%s: %zu triangle pairs (%zu exact), %zu same-facing (duplicated faces), %zu opposite "
+                "(contact), area %g, e.g. at (%g, %g, %g)\n",
+                solid_label(s, p.a).c_str(), self ? " (within itself)" : " <-> ",
+                self ? "" : solid_label(s, p.b).c_str(), p.pairs, p.exact_pairs, p.same_facing, p.opposite_facing,
+                p.area, p.where.x, p.where.y, p.where.z);
+  }
+  if (r.rays_ending_inside)
+    std::printf("note: %zu rays ended inside a solid (open mesh?): see `pierce info`\n", r.rays_ending_inside);
+}
+
+int run_overlaps(const OverlapsCli& o) {
+  InterruptGuard guard;
+  const Format format = format_of(o.out);
+  OutputFile::check_target(o.out, o.force);
+  const std::optional<KernelKind> kernel = parse_kernel(o.kernel);
+  if (!kernel || !is_exact(*kernel)) throw InputError("--kernel '" + o.kernel + "': not an exact kernel");
+  if (!(o.tol >= 0) || !std::isfinite(o.tol)) throw InputError("--tol must be a finite number >= 0");
+
+  Scene scene;
+  load_models(scene, o.model);
+  if (interrupted()) return cancelled();
+  const std::vector<Ray> rays = make_rays(o.rays, scene);
+  const Accel accel(scene);
+  if (interrupted()) return cancelled();
+
+  auto with_bar = [&](const char* label) {
+    auto once = std::make_shared<std::once_flag>();
+    auto bar = std::make_shared<std::unique_ptr<ProgressBar>>();
+    return std::make_pair(
+        [=, &o](std::size_t done, std::size_t total) {
+          std::call_once(*once, [&] { *bar = std::make_unique<ProgressBar>(label, total, o.progress); });
+          return (*bar)->update(done);
+        },
+        bar);
+  };
+  CoplanarOptions copts;
+  copts.tolerance = o.tol;
+  auto [cop_progress, cop_bar] = with_bar("coplanar");
+  const CoplanarReport cop = find_coplanar_overlaps(scene, copts, cop_progress);
+  if (*cop_bar) (*cop_bar)->finish();
+  if (!cop.completed || interrupted()) return cancelled();
+
+  RayOverlapOptions ropts;
+  ropts.kernel = *kernel;
+  ropts.epsilon_rel = o.ray_eps;
+  auto [ray_progress, ray_bar] = with_bar("rays");
+  const RayOverlapReport rep = analyse_ray_overlaps(accel, rays, ropts, ray_progress);
+  if (*ray_bar) (*ray_bar)->finish();
+  if (!rep.completed || interrupted()) return cancelled();
+
+  print_summary(scene, cop, rep, o);
+  std::fflush(stdout);
+  if (format == Format::none) return 0;
+  OutputFile out(o.out, o.force);
+  switch (format) {
+    case Format::vtp: write_vtp_result(out.stream(), scene, triangle_overlap_arrays(scene, &cop, &rep)); break;
+    case Format::csv: write_csv(out.stream(), scene, cop, rep); break;
+    case Format::json: write_json(out.stream(), scene, o, cop, rep); break;
+    case Format::none: break;
+  }
+  if (interrupted()) return cancelled();
+  out.commit();
+  return 0;
+}
+
+}  // namespace
+
+std::function<int()> register_overlaps(CLI::App& app) {
+  auto o = std::make_shared<OverlapsCli>();
+  CLI::App* cmd = app.add_subcommand(
+      "overlaps", "Coplanar overlapping faces, coplanar-hit statistic and solid-solid interference along rays");
+  add_model_args(cmd, o->model, true);
+  cmd->add_option("--tol", o->tol,
+                  "Also report faces within this distance of coplanar (model units); 0 = exactly coplanar only")
+      ->capture_default_str();
+  cmd->add_option("--rays", o->rays,
+                  "Rays for the statistic and interference: axes:n=N (N x N along each axis), "
+                  "grid:axis=x|y|z,n=N, random:n=N[,seed=S], or a CSV file")
+      ->capture_default_str();
+  cmd->add_option("--ray-eps", o->ray_eps, "Coplanar-hit epsilon, relative to the scene diagonal")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--kernel", o->kernel, "Exact kernel to trace with (all give the same result)")->capture_default_str();
+  cmd->add_option("-o,--out", o->out, "Output file: .vtp (per-triangle arrays), .csv (per solid pair) or .json (all)");
+  cmd->add_flag("--force", o->force, "Overwrite an existing output file");
+  cmd->add_flag("--progress", o->progress, "Show a progress bar on stderr even when it is not a terminal");
+  return [o] { return run_overlaps(*o); };
+}
+
+}  // namespace pierce::cli

@@ -1,0 +1,266 @@
+// `pierce thickness MODEL`: wall-thickness map per vertex or per face (ray, cone or sphere
+// method), written as VTP (ParaView), CSV or JSON, with per-solid statistics on stdout.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <mutex>
+
+#include <nlohmann/json.hpp>
+
+#include "command.h"
+#include "interrupt.h"
+#include "model_args.h"
+#include "output_file.h"
+#include "pierce/analysis/thickness.h"
+#include "pierce/error.h"
+#include "progress.h"
+#include "vtp_writer.h"
+
+namespace pierce::cli {
+
+namespace {
+
+using analysis::SampleAt;
+using analysis::ThicknessMethod;
+using analysis::ThicknessResult;
+
+struct ThicknessCli {
+  ModelArgs model;
+  std::string method = "ray", per = "vertex", kernel = "queue";
+  double min_thickness = 0;
+  double max_distance = std::numeric_limits<double>::infinity();
+  int cone_rays = 30;
+  double cone_angle = 120;
+  std::vector<std::string> solids;
+  std::string out;
+  bool force = false, progress = false;
+};
+
+enum class Format { none, vtp, csv, json };
+
+Format format_of(const std::string& path) {
+  if (path.empty()) return Format::none;
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".vtp") return Format::vtp;
+  if (ext == ".csv") return Format::csv;
+  if (ext == ".json") return Format::json;
+  throw InputError(path + ": unknown output format (expected .vtp, .csv or .json)");
+}
+
+int cancelled() {
+  std::cerr << "pierce: cancelled\n";
+  return kExitCancelled;
+}
+
+// Solids by name or id.
+std::vector<std::uint32_t> resolve_solids(const Scene& scene, const std::vector<std::string>& wanted) {
+  std::vector<std::uint32_t> ids;
+  for (const std::string& w : wanted) {
+    bool found = false;
+    for (std::uint32_t g = 0; g < scene.geometries().size(); ++g)
+      if (scene.geometry(g).name == w) ids.push_back(g), found = true;
+    if (found) continue;
+    char* end = nullptr;
+    const unsigned long id = std::strtoul(w.c_str(), &end, 10);
+    if (!w.empty() && *end == '\0' && id < scene.geometries().size()) {
+      ids.push_back(std::uint32_t(id));
+      continue;
+    }
+    throw InputError("--solid '" + w + "': no solid with that name or id (" +
+                     std::to_string(scene.geometries().size()) + " solids; see `pierce info`)");
+  }
+  return ids;
+}
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+std::string number(double v) {
+  if (std::isnan(v)) return "nan";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+void write_csv(std::FILE* f, const Scene& scene, const ThicknessResult& r) {
+  std::fputs("id,solid,element,x,y,z,thickness,thin,status,name\n", f);
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    const Vec3d p = r.point[i];
+    std::fprintf(f, "%zu,%u,%u,%s,%s,%s,%s,%d,%s,%s\n", i, r.solid[i], r.element[i], number(p.x).c_str(),
+                 number(p.y).c_str(), number(p.z).c_str(), number(r.thickness[i]).c_str(), int(r.thin[i]),
+                 std::string(analysis::status_name(r.status[i])).c_str(),
+                 csv_field(scene.geometry(r.solid[i]).name).c_str());
+  }
+}
+
+nlohmann::ordered_json solid_stats_json(const analysis::SolidThickness& s, const Scene& scene) {
+  nlohmann::ordered_json j{{"solid", s.geom},       {"name", s.name},           {"source", scene.geometry(s.geom).source},
+                           {"elements", s.elements}, {"valid", s.valid},         {"no_exit", s.no_exit},
+                           {"no_normal", s.no_normal}, {"thin", s.thin}};
+  if (s.valid > 0) {
+    j["min"] = s.summary.min;
+    j["max"] = s.summary.max;
+    j["mean"] = s.summary.mean;
+    nlohmann::ordered_json p;
+    for (auto [q, v] : s.summary.percentiles) p["p" + number(q)] = v;
+    j["percentiles"] = p;
+    j["histogram"] = {{"edges", s.summary.histogram.edges}, {"counts", s.summary.histogram.counts}};
+  }
+  return j;
+}
+
+void write_json(std::FILE* f, const Scene& scene, const ThicknessResult& r, const ThicknessCli& o,
+                const analysis::ThicknessOptions& opts) {
+  nlohmann::ordered_json j;
+  j["models"] = o.model.models;
+  j["method"] = o.method;
+  j["per"] = o.per;
+  j["min_thickness"] = opts.min_thickness;
+  if (std::isfinite(opts.max_distance)) j["max_distance"] = opts.max_distance;
+  j["kernel"] = o.kernel;
+  j["solids"] = nlohmann::ordered_json::array();
+  for (const auto& s : r.solids) j["solids"].push_back(solid_stats_json(s, scene));
+  auto& el = j["elements"] = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    const Vec3d p = r.point[i];
+    nlohmann::ordered_json e{{"id", i}, {"solid", r.solid[i]}, {"element", r.element[i]}, {"x", p.x}, {"y", p.y}, {"z", p.z}};
+    e["thickness"] = std::isnan(r.thickness[i]) ? nlohmann::ordered_json() : nlohmann::ordered_json(r.thickness[i]);
+    e["thin"] = bool(r.thin[i]);
+    e["status"] = analysis::status_name(r.status[i]);
+    el.push_back(std::move(e));
+  }
+  const std::string text = j.dump(1);
+  std::fwrite(text.data(), 1, text.size(), f);
+  std::fputc('\n', f);
+}
+
+void write_vtp_result(std::FILE* f, const Scene& scene, const ThicknessResult& r) {
+  PolyData d;
+  std::vector<std::int32_t> cell_solid;
+  std::vector<std::int32_t> point_solid;
+  // The sampled solids, in result order, each once.
+  std::vector<std::uint32_t> solids;
+  for (const auto& s : r.solids) solids.push_back(s.geom);
+  for (std::uint32_t g : solids) {
+    const Geometry& geo = scene.geometry(g);
+    const auto base = std::uint32_t(d.points.size());
+    d.points.insert(d.points.end(), geo.vertices.begin(), geo.vertices.end());
+    point_solid.insert(point_solid.end(), geo.vertices.size(), std::int32_t(g));
+    for (const Tri& t : geo.triangles) d.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    cell_solid.insert(cell_solid.end(), geo.triangles.size(), std::int32_t(g));
+  }
+  std::vector<std::uint8_t> status(r.size());
+  for (std::size_t i = 0; i < r.size(); ++i) status[i] = std::uint8_t(r.status[i]);
+  auto& target = r.per == SampleAt::vertex ? d.point_data : d.cell_data;
+  target.emplace_back("Thickness", r.thickness);
+  target.emplace_back("Thin", r.thin);
+  target.emplace_back("Status", std::move(status));
+  d.point_data.emplace_back("SolidId", std::move(point_solid));
+  d.cell_data.emplace_back("SolidId", std::move(cell_solid));
+  if (!write_vtp(f, d)) throw std::runtime_error("write error");
+}
+
+void print_summary(const Scene& scene, const ThicknessResult& r, const analysis::ThicknessOptions& opts) {
+  const char* what = r.per == SampleAt::vertex ? "vertices" : "faces";
+  for (const auto& s : r.solids) {
+    std::printf("solid %u %s: %zu %s, %zu measured", s.geom, solid_label(scene, s.geom).c_str(), s.elements, what,
+                s.valid);
+    if (s.no_exit) std::printf(", %zu without exit (open mesh or beyond max distance)", s.no_exit);
+    if (s.no_normal) std::printf(", %zu without normal", s.no_normal);
+    std::printf("\n");
+    if (s.valid == 0) continue;
+    auto pct = [&](double q) {
+      for (auto [k, v] : s.summary.percentiles)
+        if (k == q) return v;
+      return std::numeric_limits<double>::quiet_NaN();
+    };
+    std::printf("  min %g  p5 %g  median %g  p95 %g  max %g  mean %g\n", s.summary.min, pct(5), pct(50), pct(95),
+                s.summary.max, s.summary.mean);
+    if (opts.min_thickness > 0) std::printf("  thin (< %g): %zu\n", opts.min_thickness, s.thin);
+  }
+}
+
+int run_thickness(const ThicknessCli& o) {
+  InterruptGuard guard;
+  const Format format = format_of(o.out);
+  OutputFile::check_target(o.out, o.force);  // before any long work
+  const std::optional<KernelKind> kernel = parse_kernel(o.kernel);
+  if (!kernel || !is_exact(*kernel)) throw InputError("--kernel '" + o.kernel + "': not an exact kernel");
+
+  Scene scene;
+  load_models(scene, o.model);
+  if (interrupted()) return cancelled();
+  analysis::ThicknessOptions opts;
+  opts.method = o.method == "ray" ? ThicknessMethod::ray : o.method == "cone" ? ThicknessMethod::cone : ThicknessMethod::sphere;
+  opts.per = o.per == "vertex" ? SampleAt::vertex : SampleAt::face;
+  opts.min_thickness = o.min_thickness;
+  opts.max_distance = o.max_distance;
+  opts.cone_rays = o.cone_rays;
+  opts.cone_angle_deg = o.cone_angle;
+  opts.kernel = *kernel;
+  opts.solids = resolve_solids(scene, o.solids);
+  const Accel accel(scene);
+  if (interrupted()) return cancelled();
+
+  std::once_flag bar_once;
+  std::unique_ptr<ProgressBar> bar;
+  const ThicknessResult r = analysis::compute_thickness(accel, opts, [&](std::size_t done, std::size_t total) {
+    std::call_once(bar_once, [&] { bar = std::make_unique<ProgressBar>("thickness", total, o.progress); });
+    return bar->update(done);
+  });
+  if (bar) bar->finish();
+  if (!r.completed || interrupted()) return cancelled();
+
+  print_summary(scene, r, opts);
+  std::fflush(stdout);
+  if (format == Format::none) return 0;
+  OutputFile out(o.out, o.force);
+  switch (format) {
+    case Format::vtp: write_vtp_result(out.stream(), scene, r); break;
+    case Format::csv: write_csv(out.stream(), scene, r); break;
+    case Format::json: write_json(out.stream(), scene, r, o, opts); break;
+    case Format::none: break;
+  }
+  if (interrupted()) return cancelled();
+  out.commit();
+  return 0;
+}
+
+}  // namespace
+
+std::function<int()> register_thickness(CLI::App& app) {
+  auto o = std::make_shared<ThicknessCli>();
+  CLI::App* cmd = app.add_subcommand("thickness", "Wall-thickness map per vertex or face (VTP, CSV or JSON)");
+  add_model_args(cmd, o->model, false);
+  cmd->add_option("--method", o->method,
+                  "ray: along the inward normal to where the ray leaves the solid; cone: shape diameter function "
+                  "over --cone-rays rays; sphere: diameter of the largest inscribed ball touching the point")
+      ->check(CLI::IsMember({"ray", "cone", "sphere"}))
+      ->capture_default_str();
+  cmd->add_option("--per", o->per, "Sample at every vertex or every face (triangle centroid)")
+      ->check(CLI::IsMember({"vertex", "face"}))
+      ->capture_default_str();
+  cmd->add_option("--min", o->min_thickness, "Thin flag: thickness below this")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--max-distance", o->max_distance, "Search no farther; beyond it: no thickness (status no_exit)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--cone-rays", o->cone_rays, "Cone method: rays per sample")->check(CLI::Range(1, 1000))->capture_default_str();
+  cmd->add_option("--cone-angle", o->cone_angle, "Cone method: full opening angle, degrees")
+      ->check(CLI::Range(0.1, 179.0))
+      ->capture_default_str();
+  cmd->add_option("--solid", o->solids, "Only these solids (name or id; repeatable); the others still bound rays");
+  cmd->add_option("--kernel", o->kernel, "Exact kernel to trace with (all give the same result)")->capture_default_str();
+  cmd->add_option("-o,--out", o->out, "Output file: .vtp (ParaView), .csv or .json; without it only the summary");
+  cmd->add_flag("--force", o->force, "Overwrite an existing output file");
+  cmd->add_flag("--progress", o->progress, "Show a progress bar on stderr even when it is not a terminal");
+  return [o] { return run_thickness(*o); };
+}
+
+}  // namespace pierce::cli

@@ -1,0 +1,36 @@
+#include "model_args.h"
+
+#include <iostream>
+
+namespace pierce::cli {
+
+void add_model_args(CLI::App* cmd, ModelArgs& args, bool several) {
+  const std::string formats = "STL, OBJ, OFF, PLY meshes; STEP, IGES, BREP CAD files (one solid per geometry)";
+  if (several)
+    cmd->add_option("models", args.models, "Model files: " + formats)->required();
+  else
+    cmd->add_option("models", args.models, "Model file: " + formats)->required()->expected(1);
+  cmd->add_option("--deflection", args.tessellation.linear_deflection,
+                  "CAD tessellation: largest surface-to-triangle distance in model units (mm for STEP/IGES); "
+                  "0 = 0.1% of the model's diagonal")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--angular-deflection", args.tessellation.angular_deflection_deg,
+                  "CAD tessellation: largest angle between neighbouring triangles, degrees")
+      ->check(CLI::Range(0.01, 179.0))
+      ->capture_default_str();
+}
+
+std::vector<LoadedFile> load_models(Scene& scene, const ModelArgs& args) {
+  std::vector<LoadedFile> files = add_any_model(scene, args.models, args.tessellation);
+  for (const LoadedFile& f : files)
+    for (const std::string& w : f.warnings) std::cerr << "pierce: warning: " << f.path << ": " << w << "\n";
+  return files;
+}
+
+std::string solid_label(const Scene& scene, std::uint32_t id) {
+  const std::string& n = scene.geometry(id).name;
+  return n.empty() ? "#" + std::to_string(id) : n;
+}
+
+}  // namespace pierce::cli

@@ -1,0 +1,125 @@
+#include "vtp_writer.h"
+
+#include <bit>
+#include <stdexcept>
+
+namespace pierce::cli {
+
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "the VTP writer declares little-endian data");
+
+template <typename T> const char* vtk_type();
+template <> const char* vtk_type<double>() { return "Float64"; }
+template <> const char* vtk_type<std::int32_t>() { return "Int32"; }
+template <> const char* vtk_type<std::uint32_t>() { return "UInt32"; }
+template <> const char* vtk_type<std::uint8_t>() { return "UInt8"; }
+template <> const char* vtk_type<std::int64_t>() { return "Int64"; }
+
+std::string base64(const unsigned char* p, std::size_t n) {
+  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((n + 2) / 3 * 4);
+  for (std::size_t i = 0; i < n; i += 3) {
+    const unsigned v = unsigned(p[i]) << 16 | (i + 1 < n ? unsigned(p[i + 1]) << 8 : 0u) | (i + 2 < n ? unsigned(p[i + 2]) : 0u);
+    out += k[(v >> 18) & 63];
+    out += k[(v >> 12) & 63];
+    out += i + 1 < n ? k[(v >> 6) & 63] : '=';
+    out += i + 2 < n ? k[v & 63] : '=';
+  }
+  return out;
+}
+
+// Arrays are described in the XML header and their data queued for the appended block, base64
+// encoded (raw appended bytes trip the expat parser of Debian's VTK 9.2 / ParaView 5.11). Each
+// block is the encoded UInt64 byte count followed by the separately encoded data, as VTK writes it;
+// offsets count encoded characters.
+class Writer {
+ public:
+  explicit Writer(std::FILE* f) : f_(f) {}
+
+  template <typename T>
+  void array(const std::string& name, const std::vector<T>& v, int components = 1) {
+    std::fprintf(f_, "        <DataArray type=\"%s\" Name=\"%s\" NumberOfComponents=\"%d\" format=\"appended\" offset=\"%zu\"/>\n",
+                 vtk_type<T>(), name.c_str(), components, appended_.size());
+    const std::uint64_t bytes = v.size() * sizeof(T);
+    appended_ += base64(reinterpret_cast<const unsigned char*>(&bytes), sizeof bytes);
+    appended_ += base64(reinterpret_cast<const unsigned char*>(v.data()), bytes);
+  }
+
+  bool finish() {
+    std::fputs("  <AppendedData encoding=\"base64\">\n   _", f_);
+    std::fwrite(appended_.data(), 1, appended_.size(), f_);
+    std::fputs("\n  </AppendedData>\n</VTKFile>\n", f_);
+    return !std::ferror(f_);
+  }
+
+ private:
+  std::FILE* f_;
+  std::string appended_;
+};
+
+std::string xml_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::size_t size_of(const DataArray& a) {
+  return std::visit([](const auto& v) { return v.size(); }, a);
+}
+
+}  // namespace
+
+bool write_vtp(std::FILE* out, const PolyData& d) {
+  for (const auto& [name, a] : d.point_data)
+    if (size_of(a) != d.points.size()) throw std::invalid_argument("VTP point array " + name + " has the wrong length");
+  for (const auto& [name, a] : d.cell_data)
+    if (size_of(a) != d.triangles.size()) throw std::invalid_argument("VTP cell array " + name + " has the wrong length");
+
+  // Flattened copies kept alive until the appended block is written.
+  std::vector<double> coords;
+  coords.reserve(d.points.size() * 3);
+  for (const Vec3d& p : d.points) coords.insert(coords.end(), {p.x, p.y, p.z});
+  std::vector<std::int64_t> connectivity, offsets;
+  connectivity.reserve(d.triangles.size() * 3);
+  for (const Tri& t : d.triangles) {
+    for (auto v : t) connectivity.push_back(std::int64_t(v));
+    offsets.push_back(std::int64_t(connectivity.size()));
+  }
+
+  std::fputs("<?xml version=\"1.0\"?>\n"
+             "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+             "  <PolyData>\n",
+             out);
+  std::fprintf(out,
+               "    <Piece NumberOfPoints=\"%zu\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
+               "NumberOfPolys=\"%zu\">\n",
+               d.points.size(), d.triangles.size());
+  Writer w(out);
+  auto arrays = [&](const char* tag, const std::vector<std::pair<std::string, DataArray>>& list) {
+    if (list.empty()) return;
+    std::fprintf(out, "      <%s Scalars=\"%s\">\n", tag, xml_escape(list.front().first).c_str());
+    for (const auto& [name, a] : list) std::visit([&, &n = name](const auto& v) { w.array(xml_escape(n), v); }, a);
+    std::fprintf(out, "      </%s>\n", tag);
+  };
+  arrays("PointData", d.point_data);
+  arrays("CellData", d.cell_data);
+  std::fputs("      <Points>\n", out);
+  w.array("Points", coords, 3);
+  std::fputs("      </Points>\n      <Polys>\n", out);
+  w.array("connectivity", connectivity);
+  w.array("offsets", offsets);
+  std::fputs("      </Polys>\n    </Piece>\n  </PolyData>\n", out);
+  return w.finish();
+}
+
+}  // namespace pierce::cli

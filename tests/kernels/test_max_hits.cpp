@@ -1,0 +1,96 @@
+// The max-hits hint: N-closest kernels (nodecull, embree-nodecull) fetch hits in batches of N but
+// continuing next() past N still yields the complete sequence; every kernel accepts the hint; and
+// collect_hits with max_hits returns exactly the first N.
+#include <random>
+
+#include "test_util.h"
+
+namespace pierce::test {
+namespace {
+
+struct Fixture {
+  std::unique_ptr<World> world;
+  std::vector<Ray> rays;
+};
+
+// Ties everywhere (touching plates, 7 copies of one box) plus a soup, and rays with many hits.
+Fixture make_fixture() {
+  auto meshes = gen::stacked_plates(10);
+  meshes.push_back(gen::duplicated(gen::box({0.25, 0.25, 0.25}, {0.75, 0.75, 0.75}, "dup"), 7, false));
+  meshes.push_back(gen::random_soup(300, 0.3, 8));
+  Fixture f{make_world(meshes), {}};
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> U(0.05, 0.95), D(-0.1, 0.1);
+  for (int i = 0; i < 25; ++i) f.rays.push_back({{U(rng), U(rng), -1.0}, {D(rng), D(rng), 1.0}});
+  for (int i = 0; i < 10; ++i) f.rays.push_back({{U(rng), U(rng), 2.0}, {0, 0, -1.0}});
+  for (const Ray& r : random_rays(f.world->scene.bounds(), 25, 13)) f.rays.push_back(r);
+  return f;
+}
+
+constexpr std::size_t kHints[] = {1, 5, 15};
+
+TEST(MaxHits, NodeCullContinuesPastTheHint) {
+  const Fixture f = make_fixture();
+  for (TieOrder tie : kTieOrders) {
+    SCOPED_TRACE(tie_name(tie));
+    for (KernelKind k : {KernelKind::nodecull, KernelKind::embree_nodecull}) {
+      HitIterator it(f.world->accel, k, {HitOrder{tie}});
+      for (std::size_t n : kHints)
+        for (const Ray& r : f.rays) {
+          const auto want = reference_hits(f.world->scene, r, {tie});
+          it.begin(r, n);
+          std::vector<Hit> got;
+          Hit h;
+          while (got.size() <= want.size() + 5 && it.next(h)) got.push_back(h);
+          ASSERT_TRUE(same_hits(want, got)) << kernel_name(k) << " hint " << n << " " << str(r);
+          EXPECT_FALSE(it.next(h)) << "an exhausted iterator stays exhausted";
+        }
+    }
+  }
+}
+
+TEST(MaxHits, EveryKernelAcceptsTheHint) {
+  const Fixture f = make_fixture();
+  std::size_t long_rays = 0;
+  for (const Ray& r : f.rays) long_rays += reference_hits(f.world->scene, r, {}).size() > 15;
+  ASSERT_GT(long_rays, 20u) << "the fixture must have rays longer than the largest hint";
+  for (KernelKind k : exact_kernels()) {
+    HitIterator it(f.world->accel, k);
+    for (std::size_t n : kHints)
+      for (const Ray& r : f.rays) {
+        const auto want = reference_hits(f.world->scene, r, {});
+        it.begin(r, n);
+        std::vector<Hit> got;
+        Hit h;
+        while (got.size() <= want.size() + 5 && it.next(h)) got.push_back(h);
+        ASSERT_TRUE(same_hits(want, got)) << kernel_name(k) << " hint " << n << " " << str(r);
+      }
+  }
+}
+
+TEST(MaxHits, CollectHitsTruncates) {
+  const Fixture f = make_fixture();
+  for (TieOrder tie : kTieOrders) {
+    SCOPED_TRACE(tie_name(tie));
+    for (KernelKind k : exact_kernels()) {
+      HitIterator it(f.world->accel, k, {HitOrder{tie}});
+      for (const Ray& r : f.rays) {
+        const auto all = reference_hits(f.world->scene, r, {tie});
+        for (std::size_t n : {std::size_t(1), std::size_t(5), std::size_t(15), all.size(), all.size() + 3}) {
+          if (n == 0) continue;  // 0 means "all"
+          const std::vector<Hit> want(all.begin(), all.begin() + std::ptrdiff_t(std::min(n, all.size())));
+          std::vector<Hit> got{Hit{}};  // collect_hits appends
+          collect_hits(it, r, n, got);
+          got.erase(got.begin());
+          ASSERT_TRUE(same_hits(want, got)) << kernel_name(k) << " max_hits " << n << " " << str(r);
+        }
+        std::vector<Hit> got;
+        collect_hits(it, r, 0, got);
+        ASSERT_TRUE(same_hits(all, got)) << kernel_name(k) << " max_hits 0 " << str(r);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace pierce::test

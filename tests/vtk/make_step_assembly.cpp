@@ -1,0 +1,20 @@
+// Writes the test STEP assembly (step_assembly.h) to the path given: the fixture of the pvbatch
+// tests.
+#include <exception>
+#include <iostream>
+
+#include "step_assembly.h"
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::cerr << "usage: " << argv[0] << " OUT.step\n";
+    return 2;
+  }
+  try {
+    pierce::vtk_test::write_step_assembly(argv[1]);
+  } catch (const std::exception& e) {
+    std::cerr << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

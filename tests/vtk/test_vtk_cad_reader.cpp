@@ -1,0 +1,106 @@
+// vtkPierceCADReader on a STEP assembly written here: one block per solid with its assembly name,
+// placements, SolidId; then thickness per solid through the reader's output; errors.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkStringArray.h>
+
+#include "step_assembly.h"
+#include "vtkPierceCADReader.h"
+#include "vtkPierceThickness.h"
+#include "vtk_test_util.h"
+
+namespace pierce::vtk_test {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string& assembly_path() {
+  static const std::string path = [] {
+    const fs::path dir = fs::temp_directory_path() / ("pierce_vtk_cad_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const std::string p = (dir / "assembly.step").string();
+    write_step_assembly(p);
+    return p;
+  }();
+  return path;
+}
+
+std::map<std::string, vtkPolyData*> blocks_by_name(vtkMultiBlockDataSet* mb) {
+  std::map<std::string, vtkPolyData*> m;
+  for (unsigned int i = 0; i < mb->GetNumberOfBlocks(); ++i)
+    m[mb->GetMetaData(i)->Get(vtkCompositeDataSet::NAME())] = vtkPolyData::SafeDownCast(mb->GetBlock(i));
+  return m;
+}
+
+TEST(VtkCadReader, StepAssemblyGivesOneNamedBlockPerSolid) {
+  auto reader = vtkSmartPointer<vtkPierceCADReader>::New();
+  reader->SetFileName(assembly_path().c_str());
+  reader->Update();
+  vtkMultiBlockDataSet* out = reader->GetOutput();
+  ASSERT_EQ(out->GetNumberOfBlocks(), 4u);
+  auto blocks = blocks_by_name(out);
+  ASSERT_EQ(blocks.count("plate_assy/plate"), 1u);
+  ASSERT_EQ(blocks.count("plate_assy/block#2"), 1u);
+  double b[6];
+  blocks["plate_assy/block#2"]->GetBounds(b);
+  EXPECT_NEAR(b[0], 6.0, 1e-9);
+  EXPECT_NEAR(b[4], 2.0, 1e-9);
+  blocks["plate_assy/clash"]->GetBounds(b);
+  EXPECT_NEAR(b[4], 1.5, 1e-9);
+  auto* units = vtkStringArray::SafeDownCast(out->GetFieldData()->GetAbstractArray("Units"));
+  ASSERT_NE(units, nullptr);
+  EXPECT_EQ(units->GetValue(0), "mm");
+  EXPECT_NE(blocks["plate_assy/plate"]->GetCellData()->GetArray("SolidId"), nullptr);
+}
+
+TEST(VtkCadReader, ThicknessOfTheAssemblyIsEachPartsOwnWidth) {
+  auto reader = vtkSmartPointer<vtkPierceCADReader>::New();
+  reader->SetFileName(assembly_path().c_str());
+  auto f = vtkSmartPointer<vtkPierceThickness>::New();
+  f->SetInputConnection(reader->GetOutputPort());
+  f->SetSampleAt(vtkPierceThickness::CELLS);
+  f->Update();
+  auto blocks = blocks_by_name(vtkMultiBlockDataSet::SafeDownCast(f->GetOutputDataObject(0)));
+  // The block touches the plate and the clash is sunk into it: neither changes the plate's
+  // thickness, which is 2 through z and 10 through x and y.
+  vtkPolyData* plate = blocks["plate_assy/plate"];
+  vtkDataArray* t = plate->GetCellData()->GetArray("Thickness");
+  ASSERT_NE(t, nullptr);
+  for (vtkIdType c = 0; c < plate->GetNumberOfCells(); ++c) {
+    const double v = t->GetTuple1(c);
+    EXPECT_TRUE(std::abs(v - 2.0) < 1e-6 || std::abs(v - 10.0) < 1e-6) << "cell " << c << ": " << v;
+  }
+  vtkDataArray* tb = blocks["plate_assy/block"]->GetCellData()->GetArray("Thickness");
+  EXPECT_NEAR(tb->GetRange()[0], 2.0, 1e-6);
+  EXPECT_NEAR(tb->GetRange()[1], 2.0, 1e-6);
+}
+
+TEST(VtkCadReader, MissingAndMalformedFilesAreErrors) {
+  const fs::path dir = fs::path(assembly_path()).parent_path();
+  const std::string garbage = (dir / "garbage.step").string();
+  std::ofstream(garbage) << "this is not a STEP file\n";
+  for (const std::string& path : {(dir / "missing.step").string(), garbage}) {
+    auto reader = vtkSmartPointer<vtkPierceCADReader>::New();
+    auto messages = vtkSmartPointer<MessageCollector>::New();
+    messages->Watch(reader);
+    messages->Watch(reader->GetExecutive());
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    EXPECT_TRUE(messages->ErrorContains(fs::path(path).filename().string())) << path;
+    EXPECT_EQ(reader->GetOutput()->GetNumberOfBlocks(), 0u);
+  }
+  EXPECT_EQ(vtkPierceCADReader::CanReadFile("a.STP"), 1);
+  EXPECT_EQ(vtkPierceCADReader::CanReadFile("a.stl"), 0);
+}
+
+}  // namespace
+}  // namespace pierce::vtk_test

@@ -1,0 +1,128 @@
+#include "vtkPierceCADReader.h"
+
+#include <exception>
+#include <string>
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkCompositeDataSet.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkObjectFactory.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkStringArray.h>
+
+#include "pierce/io/cad_io.h"
+
+vtkStandardNewMacro(vtkPierceCADReader);
+
+namespace
+{
+
+vtkSmartPointer<vtkPolyData> ToPolyData(const pierce::CadSolid& solid, int solidId)
+{
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(solid.vertices.size()));
+  for (std::size_t i = 0; i < solid.vertices.size(); ++i)
+  {
+    const pierce::Vec3d& p = solid.vertices[i];
+    points->SetPoint(static_cast<vtkIdType>(i), p.x, p.y, p.z);
+  }
+  auto triangles = vtkSmartPointer<vtkCellArray>::New();
+  triangles->AllocateExact(static_cast<vtkIdType>(solid.triangles.size()),
+    3 * static_cast<vtkIdType>(solid.triangles.size()));
+  for (const pierce::Tri& t : solid.triangles)
+  {
+    const vtkIdType ids[3] = { t[0], t[1], t[2] };
+    triangles->InsertNextCell(3, ids);
+  }
+  auto ids = vtkSmartPointer<vtkIntArray>::New();
+  ids->SetName("SolidId");
+  ids->SetNumberOfValues(static_cast<vtkIdType>(solid.triangles.size()));
+  ids->Fill(solidId);
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(points);
+  poly->SetPolys(triangles);
+  poly->GetCellData()->AddArray(ids);
+  return poly;
+}
+
+}
+
+vtkPierceCADReader::vtkPierceCADReader()
+  : FileName(nullptr)
+  , LinearDeflection(0.0)
+  , AngularDeflection(15.0)
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+vtkPierceCADReader::~vtkPierceCADReader()
+{
+  this->SetFileName(nullptr);
+}
+
+int vtkPierceCADReader::CanReadFile(const char* fileName)
+{
+  return fileName && pierce::is_cad_file(fileName) ? 1 : 0;
+}
+
+int vtkPierceCADReader::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  if (!this->FileName || !*this->FileName)
+  {
+    vtkErrorMacro(<< "no file name");
+    return 0;
+  }
+  pierce::TessellationOptions options;
+  options.linear_deflection = this->LinearDeflection;
+  options.angular_deflection_deg = this->AngularDeflection;
+  pierce::CadModel model;
+  try
+  {
+    model = pierce::load_cad_file(this->FileName, options);
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  for (const std::string& warning : model.warnings)
+  {
+    vtkWarningMacro(<< this->FileName << ": " << warning);
+  }
+
+  vtkMultiBlockDataSet* output = vtkMultiBlockDataSet::GetData(outputVector, 0);
+  output->SetNumberOfBlocks(static_cast<unsigned int>(model.solids.size()));
+  for (std::size_t i = 0; i < model.solids.size(); ++i)
+  {
+    const auto block = static_cast<unsigned int>(i);
+    output->SetBlock(block, ToPolyData(model.solids[i], static_cast<int>(i)));
+    output->GetMetaData(block)->Set(vtkCompositeDataSet::NAME(), model.solids[i].name.c_str());
+  }
+  auto units = vtkSmartPointer<vtkStringArray>::New();
+  units->SetName("Units");
+  units->InsertNextValue(model.units);
+  auto deflection = vtkSmartPointer<vtkDoubleArray>::New();
+  deflection->SetName("LinearDeflection");
+  deflection->InsertNextValue(model.linear_deflection);
+  output->GetFieldData()->AddArray(units);
+  output->GetFieldData()->AddArray(deflection);
+  return 1;
+}
+
+void vtkPierceCADReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
+  os << indent << "LinearDeflection: " << this->LinearDeflection << "\n";
+  os << indent << "AngularDeflection: " << this->AngularDeflection << "\n";
+}
