@@ -123,6 +123,11 @@ int main(int argc, char** argv) {
       if (!od) od = std::make_unique<oracle::Oracle<double>>(c.scene);
       want_d.push_back(od->trace(c.rays[i]));
       fi.outside_class += want_d[i].outside.size();
+      if (verbose && !want_d[i].outside.empty()) {
+        std::fprintf(stderr, "%s [%s] ray %zu has decisions outside the exact class (double)\n", c.family.c_str(),
+                     c.name.c_str(), i);
+        print_details(c.rays[i], {}, want_d[i]);
+      }
     }
     for (std::size_t i = 0; i < c.rays.size(); ++i) {
       fi.expected_float += want_f[i].hits.size();

@@ -1,6 +1,7 @@
 #include "vtp_writer.h"
 
 #include <bit>
+#include <cstring>
 #include <stdexcept>
 
 namespace pierce::cli {
@@ -30,33 +31,33 @@ std::string base64(const unsigned char* p, std::size_t n) {
   return out;
 }
 
-// Arrays are described in the XML header and their data queued for the appended block, base64
-// encoded (raw appended bytes trip the expat parser of Debian's VTK 9.2 / ParaView 5.11). Each
-// block is the encoded UInt64 byte count followed by the separately encoded data, as VTK writes it;
-// offsets count encoded characters.
+// Arrays are written inline, base64-encoded: the UInt64 byte count and the data in one stream,
+// as VTK writes them. (Appended data, raw or encoded, trips the expat-based parser of Debian's
+// VTK 9.2 / ParaView 5.11 at random positions; inline data is plain XML text.)
 class Writer {
  public:
   explicit Writer(std::FILE* f) : f_(f) {}
 
   template <typename T>
   void array(const std::string& name, const std::vector<T>& v, int components = 1) {
-    std::fprintf(f_, "        <DataArray type=\"%s\" Name=\"%s\" NumberOfComponents=\"%d\" format=\"appended\" offset=\"%zu\"/>\n",
-                 vtk_type<T>(), name.c_str(), components, appended_.size());
+    std::fprintf(f_, "        <DataArray type=\"%s\" Name=\"%s\" NumberOfComponents=\"%d\" format=\"binary\">\n          ",
+                 vtk_type<T>(), name.c_str(), components);
     const std::uint64_t bytes = v.size() * sizeof(T);
-    appended_ += base64(reinterpret_cast<const unsigned char*>(&bytes), sizeof bytes);
-    appended_ += base64(reinterpret_cast<const unsigned char*>(v.data()), bytes);
+    std::vector<unsigned char> block(sizeof bytes + bytes);
+    std::memcpy(block.data(), &bytes, sizeof bytes);
+    if (bytes) std::memcpy(block.data() + sizeof bytes, v.data(), bytes);
+    const std::string text = base64(block.data(), block.size());
+    std::fwrite(text.data(), 1, text.size(), f_);
+    std::fputs("\n        </DataArray>\n", f_);
   }
 
   bool finish() {
-    std::fputs("  <AppendedData encoding=\"base64\">\n   _", f_);
-    std::fwrite(appended_.data(), 1, appended_.size(), f_);
-    std::fputs("\n  </AppendedData>\n</VTKFile>\n", f_);
+    std::fputs("</VTKFile>\n", f_);
     return !std::ferror(f_);
   }
 
  private:
   std::FILE* f_;
-  std::string appended_;
 };
 
 std::string xml_escape(const std::string& s) {

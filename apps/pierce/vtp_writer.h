@@ -1,7 +1,7 @@
 #pragma once
 // VTK XML PolyData (.vtp) written by hand, so Pierce needs no VTK: triangles with point and cell
-// data arrays, binary in a base64-encoded appended block (little-endian, UInt64 headers), as
-// ParaView and VTK's vtkXMLPolyDataReader read it.
+// data arrays, inline binary (base64, little-endian, UInt64 headers), as ParaView and VTK's
+// vtkXMLPolyDataReader read it.
 #include <cstdint>
 #include <cstdio>
 #include <string>

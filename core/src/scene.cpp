@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "pierce/error.h"
+#include "pierce/exact_sign.h"
 
 namespace pierce {
 
@@ -16,15 +17,17 @@ std::string where(const std::string& source, const std::string& name) {
   return w;
 }
 
-// Exact zero test of the cross product, in double from float inputs: products of floats
-// are exact in double, so a zero result is a true zero up to a final rounding that cannot
-// turn a non-zero into zero.
+// Exact zero-area test: the corners are collinear exactly when all three coordinate-plane
+// projections have zero orientation, each decided exactly (exact_sign.h). A rounded cross
+// product would call some slivers degenerate (and never hit them) in double precision.
 template <typename T>
 bool cross_is_zero(Vec3<T> a, Vec3<T> b, Vec3<T> c) {
-  const Vec3d e1{double(b.x) - double(a.x), double(b.y) - double(a.y), double(b.z) - double(a.z)};
-  const Vec3d e2{double(c.x) - double(a.x), double(c.y) - double(a.y), double(c.z) - double(a.z)};
-  const Vec3d n = cross(e1, e2);
-  return n.x == 0.0 && n.y == 0.0 && n.z == 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    if (exact::orient2d_sign(double(a[i]), double(a[j]), double(b[i]), double(b[j]), double(c[i]), double(c[j])) != 0)
+      return false;
+  }
+  return true;
 }
 
 }  // namespace

@@ -585,6 +585,9 @@ std::vector<Case> double_rounding(const Options& o) {
     m.name = "edge" + std::to_string(meshes.size());
     const double z = double(meshes.size());
     m.vertices = {Vec3d{b.x, b.y, z}, Vec3d{c.x, c.y, z}, (b + c) * 0.5 + nrm * side + Vec3d{0, 0, z}};
+    // Every third one a sliver through the ray: corner on the axis, the other two almost
+    // collinear with it (its area may round to zero in double, but it is not zero).
+    if (meshes.size() % 3 == 2) m.vertices[2] = Vec3d{0, 0, z};
     m.triangles = {{0, 1, 2}};
     meshes.push_back(m);
   }
@@ -613,6 +616,62 @@ std::vector<Case> invalid_rays(const Options&) {
   out.push_back(make_case("invalid rays, empty scene", "box", {gen::box({0, 0, 0}, {1, 1, 1})}, rays));
   out.push_back(make_case("invalid rays, empty scene", "empty scene", {}, rays));
   return out;
+}
+
+Case random_dyadic(std::uint64_t seed, int objects, int ray_count) {
+  std::uint64_t s = seed * 0x9E3779B97F4A7C15ull + 1;
+  auto grid = [&](int n) { return pick(s, n + 1) / 16.0; };  // 0 .. n/16
+  std::vector<Mesh> meshes;
+  for (int i = 0; i < objects; ++i) {
+    const int kind = pick(s, 6);
+    if (kind <= 1) {  // closed box, possibly touching or overlapping others
+      Vec3d lo{grid(48), grid(48), grid(48)}, hi = lo;
+      for (int k = 0; k < 3; ++k) hi[k] += (1 + pick(s, 16)) / 16.0;
+      meshes.push_back(gen::box(lo, hi, "box" + std::to_string(i)));
+      if (kind == 1 && pick(s, 2)) meshes.push_back(gen::duplicated(meshes.back(), 2, pick(s, 2)));
+    } else if (kind == 2) {  // a stack of touching plates
+      const double x0 = grid(32), y0 = grid(32), z0 = grid(32), t = (1 + pick(s, 4)) / 16.0;
+      for (const Mesh& p : gen::stacked_plates(2 + pick(s, 3), 0.5, t))
+        meshes.push_back(gen::translated(p, {x0, y0, z0}));
+    } else if (kind == 3) {  // a closed octahedron (tilted faces)
+      meshes.push_back(octahedron({grid(48) + 0.5, grid(48) + 0.5, grid(48) + 0.5}, (1 + pick(s, 8)) / 16.0));
+    } else {  // loose triangles, often in an axis plane, sometimes degenerate
+      Mesh m;
+      m.name = "tris" + std::to_string(i);
+      const int axis = pick(s, 3);
+      const double level = grid(64);
+      for (int t = 0; t < 6; ++t) {
+        for (int k = 0; k < 3; ++k) {
+          Vec3d p{grid(64), grid(64), grid(64)};
+          if (kind == 4) p[axis] = level;
+          m.vertices.push_back(p);
+        }
+        if (pick(s, 8) == 0) m.vertices.back() = m.vertices[m.vertices.size() - 2];  // zero area
+        const auto b = std::uint32_t(m.vertices.size() - 3);
+        m.triangles.push_back({b, b + 1, b + 2});
+      }
+      meshes.push_back(m);
+    }
+  }
+  const BBoxd b = bounds_of(meshes);
+  std::vector<Vec3d> targets = targets_of(meshes);
+  std::erase_if(targets, [](const Vec3d& p) { return !is_float(p); });
+  for (int i = 0; i < 64; ++i) targets.push_back({grid(64), grid(64), grid(64)});
+  std::vector<Ray> rays = rays_through_targets(targets, b, ray_count, seed * 31 + 7, true, true);
+  // Some segments start or end exactly on a face crossing (an axis-plane triangle's level).
+  for (Ray& r : rays) {
+    const int mode = pick(s, 4);
+    int axis = 0;
+    for (int k = 1; k < 3; ++k)
+      if (std::abs(r.dir[k]) > std::abs(r.dir[axis])) axis = k;
+    const double level = grid(64);  // t where the ray crosses the plane x_axis = level: exact
+    const double t = (level - r.org[axis]) / r.dir[axis];
+    if (t < 0 || !is_float(t)) continue;
+    if (mode == 1) r.tmax = t;
+    if (mode == 2) r.tmin = t;
+  }
+  Case c = make_case("random dyadic", "seed " + std::to_string(seed), meshes, rays);
+  return c;
 }
 
 std::vector<Case> corpus(const Options& o) {

@@ -54,6 +54,12 @@ std::vector<Case> invalid_rays(const Options& o);          // NaN/Inf/zero direc
 // Every family, in report order.
 std::vector<Case> corpus(const Options& o = {});
 
+// A random scene in the exact class, for property tests and fuzzing: closed boxes, plates and
+// loose triangles on a 1/16 grid in [0, 4]^3 (touching, overlapping, coplanar, duplicated, some
+// degenerate), and `rays` rays through its vertices, edge midpoints and grid points, axis-aligned
+// or dyadic-tilted, some with tmin/tmax exactly on a face.
+Case random_dyadic(std::uint64_t seed, int objects, int rays);
+
 // ---- Building blocks (also used by the property tests) ----
 
 // Directions whose kernel shear is exact: component `axis` is +-1, the others are multiples

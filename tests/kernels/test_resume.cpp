@@ -82,7 +82,9 @@ TEST(Resume, OneIteratorAcrossRaysAbandoningSequences) {
         for (std::size_t s = rng() % 6; s > 0 && it.next(h);) --s;
         const auto got = kernel_hits(it, f.rays[i]);
         ASSERT_TRUE(same_hits(fresh[i], got)) << kernel_name(k) << " ray " << i;
-        if (is_exact(k)) ASSERT_TRUE(same_hits(f.want[i], got)) << kernel_name(k) << " ray " << i;
+        if (is_exact(k)) {
+          ASSERT_TRUE(same_hits(f.want[i], got)) << kernel_name(k) << " ray " << i;
+        }
       }
   }
 }

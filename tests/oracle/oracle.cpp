@@ -141,7 +141,7 @@ OracleResult Oracle<T>::trace(const Ray& ray, HitOrder order) const {
         h.t_approx = h.t.to_double();
         const double z = std::max({std::abs(A.akz_d), std::abs(B.akz_d), std::abs(C.akz_d)}) / std::abs(dkz);
         const double m2 = A.mag * B.mag + B.mag * C.mag + C.mag * A.mag;
-        const double det = std::abs((U.to_double() + V.to_double() + W.to_double()) / (dkz * dkz));
+        const double det = std::abs(ExactRatio{U + V + W, D[kz] * D[kz]}.to_double());  // no overflow
         h.t_tol = kTolFactor * u * (std::abs(h.t_approx) + z * (1.0 + (det > 0 ? m2 / det : 1e300)));
         // A distance the kernel's precision cannot represent is never reported (a tiny
         // direction can put every hit beyond T's largest finite value).

@@ -1,5 +1,6 @@
 #pragma once
-// Exact sign of a*b - c*d in double precision, for the double triangle test's edge functions.
+// Exact signs in double precision: a*b - c*d for the double triangle test's edge functions, and
+// 2D orientations for the exact zero-area test of triangles.
 // The rounded result decides when it is clearly away from zero; otherwise the rounding errors
 // of both products are recovered exactly with fma (error-free products) and the four-term sum
 // is added up as a non-overlapping expansion (Shewchuk 1997), whose largest term has the sign
@@ -16,9 +17,10 @@ inline void two_sum(double a, double b, double& s, double& e) {
   e = (a - (s - bb)) + (b - bb);
 }
 
-// Sign of x[0] + ... + x[3], exactly.
-inline int sum4_sign(const double (&x)[4]) {
-  double h[4];
+// Sign of x[0] + ... + x[N-1], exactly.
+template <int N>
+inline int sum_sign(const double (&x)[N]) {
+  double h[N];
   int m = 0;
   for (double q : x) {  // Grow-Expansion: h stays non-overlapping, increasing in magnitude
     for (int j = 0; j < m; ++j) {
@@ -40,7 +42,21 @@ inline int diff_of_products_sign(double a, double b, double c, double d) {
   // the rounding cannot have changed the sign.
   if (std::abs(r) > 0x1p-52 * (std::abs(p) + std::abs(q))) return r > 0.0 ? 1 : -1;
   const double x[4] = {p, -q, std::fma(a, b, -p), -std::fma(c, d, -q)};
-  return sum4_sign(x);
+  return sum_sign(x);
+}
+
+// Sign of the 2D orientation (b - a) x (c - a), exactly: expanded into six products of the raw
+// coordinates (the differences themselves would round), each split into its rounded value and
+// its exact error.
+inline int orient2d_sign(double ax, double ay, double bx, double by, double cx, double cy) {
+  const double p[6][2] = {{bx, cy}, {ax, by}, {cx, ay}, {by, cx}, {ay, bx}, {cy, ax}};  // + + + - - -
+  double x[12];
+  for (int i = 0; i < 6; ++i) {
+    const double v = p[i][0] * p[i][1], e = std::fma(p[i][0], p[i][1], -v);
+    x[2 * i] = i < 3 ? v : -v;
+    x[2 * i + 1] = i < 3 ? e : -e;
+  }
+  return sum_sign(x);
 }
 
 }  // namespace pierce::exact

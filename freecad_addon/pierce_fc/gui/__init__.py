@@ -1,0 +1,1 @@
+"""FreeCAD GUI of the Pierce workbench: commands and task panels (PySide2)."""

@@ -1,0 +1,103 @@
+"""Task panel: overlap check; clicking a row selects the faces (or solids) involved."""
+import math
+
+import FreeCAD
+import FreeCADGui as Gui
+
+from .. import overlap_check
+from ..overlap_check import OverlapOptions
+from .panel_base import PanelBase, double_spin, selected_objects, visible_solids
+from .qt import QtWidgets
+
+COLUMNS = ["Finding", "Solid A", "Solid B", "Depth (mm)", "Area (mm²)", "Faces"]
+
+
+class OverlapPanel(PanelBase):
+    TITLE = "Pierce overlap check"
+    RUN_TEXT = "Check overlaps"
+
+    def build_options(self, layout):
+        box = QtWidgets.QGroupBox("Options")
+        f = QtWidgets.QFormLayout(box)
+        self.whole_document = QtWidgets.QCheckBox("All visible solids of the document")
+        self.whole_document.setToolTip("Otherwise the selected solids (a group or App::Part selects its contents)")
+        self.tolerance = double_spin(1e-3, 0.0, 1e6, decimals=6, special="exact only", step=1e-3)
+        self.tolerance.setToolTip("Faces closer than this to each other's plane count as coplanar")
+        self.grid = QtWidgets.QSpinBox()
+        self.grid.setRange(1, 4096)
+        self.grid.setValue(64)
+        self.grid.setToolTip("Interference is looked for along grid x grid rays in each axis direction")
+        self.deflection = double_spin(0.0, 0.0, 1e6, special="automatic (0.1% of size)", step=0.01)
+        self.markers = QtWidgets.QCheckBox("Add markers to the document")
+        self.markers.setChecked(True)
+        f.addRow(self.whole_document)
+        f.addRow("Coplanar tolerance", self.tolerance)
+        f.addRow("Rays per side", self.grid)
+        f.addRow("Deflection", self.deflection)
+        f.addRow(self.markers)
+        layout.addWidget(box)
+
+    def build_results(self, layout):
+        self.table = QtWidgets.QTableWidget(0, len(COLUMNS))
+        self.table.setHorizontalHeaderLabels(COLUMNS)
+        self.table.setSelectionBehavior(QtWidgets.QAbstractItemView.SelectRows)
+        self.table.setSelectionMode(QtWidgets.QAbstractItemView.SingleSelection)
+        self.table.setEditTriggers(QtWidgets.QAbstractItemView.NoEditTriggers)
+        self.table.horizontalHeader().setStretchLastSection(True)
+        self.table.setMinimumHeight(160)
+        self.table.itemSelectionChanged.connect(self.on_row)
+        layout.addWidget(self.table)
+
+    def compute(self, progress, cancel):
+        doc = FreeCAD.ActiveDocument
+        if self.whole_document.isChecked():
+            objects = visible_solids(doc)
+        else:
+            objects = selected_objects()
+        opts = OverlapOptions(tolerance=self.tolerance.value(), grid=self.grid.value(),
+                              deflection=self.deflection.value(), create_objects=self.markers.isChecked())
+        doc.openTransaction("Pierce overlap check")
+        try:
+            result = overlap_check.run(objects, opts, doc=doc, progress=progress, cancel=cancel)
+        except BaseException:
+            doc.abortTransaction()
+            raise
+        doc.commitTransaction()
+        return result
+
+    def show_result(self, run):
+        self.table.setRowCount(0)
+        for f in run.findings:
+            r = self.table.rowCount()
+            self.table.insertRow(r)
+            depth = "" if f.depth is None else "%.4g" % f.depth
+            area = "" if f.kind == "interference" or f.area is None or math.isnan(f.area) else "%.4g" % f.area
+            faces = "; ".join("%s: %s" % (o.Label, ", ".join(s)) for o, s in f.selection() if s)
+            for col, text in enumerate([f.title, f.a.label, f.b.label if f.b is not f.a else "(same)", depth,
+                                        area, faces]):
+                self.table.setItem(r, col, QtWidgets.QTableWidgetItem(text))
+        self.table.resizeColumnsToContents()
+        text = run.summary()
+        self.report(text)
+        n = len(run.of_kind("interference"))
+        self.set_message("%d solids: %d interpenetrating pair(s), %d contact(s), %d coincident, %d duplicate. "
+                         "Click a row to select its faces." % (
+                             len(run.model.solids), n, len(run.of_kind("contact")),
+                             len(run.of_kind("coincident")), len(run.of_kind("duplicate"))))
+
+    def on_row(self):
+        rows = {i.row() for i in self.table.selectedItems()}
+        if not rows or self.last_result is None:
+            return
+        select_finding(self.last_result.findings[min(rows)])
+
+
+def select_finding(finding):
+    """Selects the faces of a finding (or whole solids when no face is known)."""
+    Gui.Selection.clearSelection()
+    for obj, subs in finding.selection():
+        if subs:
+            for s in subs:
+                Gui.Selection.addSelection(obj, s)
+        else:
+            Gui.Selection.addSelection(obj)

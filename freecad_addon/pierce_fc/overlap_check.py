@@ -1,0 +1,241 @@
+"""Overlap check: interpenetrating solids (with depth), touching solids (coplanar contacts) and
+coincident faces, on selected solids or a whole assembly.
+
+GUI-free: run() returns an OverlapRun whose findings name the solids and the faces involved (so the
+GUI can select them) and, when asked, adds marker objects to the document (a red segment along the
+deepest interpenetration of each pair, the shared triangles of each contact). The analysed objects
+are not modified.
+"""
+import math
+
+import numpy as np
+
+from .errors import UserError
+from .selection import collect_solids
+from .tessellate import build_model
+
+KINDS = {
+    "interference": "Interpenetration",
+    "contact": "Coplanar contact",
+    "coincident": "Coincident faces (same side)",
+    "duplicate": "Duplicate faces in one solid",
+}
+
+
+class OverlapOptions:
+    def __init__(self, tolerance=1e-3, grid=64, deflection=0.0, angular_deflection=15.0, create_objects=True):
+        self.tolerance = tolerance    # mm: faces closer than this to each other's plane are coplanar
+        self.grid = grid              # rays per axis side: grid x grid rays along x, y and z
+        self.deflection = deflection  # mm; 0 = 0.1% of the selection's diagonal
+        self.angular_deflection = angular_deflection
+        self.create_objects = create_objects
+
+    def check(self):
+        if self.tolerance < 0 or not math.isfinite(self.tolerance):
+            raise UserError("The coplanar tolerance must be a length >= 0.")
+        if not 1 <= self.grid <= 4096:
+            raise UserError("The ray grid must have between 1 and 4096 rays per side.")
+
+
+class Finding:
+    """One row of the report. a, b: SolidRef (b is a for duplicates inside one solid); faces_a,
+    faces_b: sub-element names ("Face3") of a.obj and b.obj; depth: how far the solids
+    interpenetrate (smallest over the axes of the largest depth along axis-parallel rays), None
+    for contacts; max_los: longest line of sight inside both; area: shared coplanar area."""
+
+    def __init__(self, kind, a, b):
+        self.kind = kind
+        self.a = a
+        self.b = b
+        self.faces_a = []
+        self.faces_b = []
+        self.depth = None
+        self.max_los = None
+        self.count = 0
+        self.area = 0.0
+        self.where = None
+        self.segment = None  # (entry, exit) of the deepest interval, interference only
+        self.triangles = []  # [(p0, p1, p2)] shared coplanar triangles of a (contacts)
+        self.result_object = None
+
+    @property
+    def title(self):
+        return KINDS[self.kind]
+
+    def describe(self):
+        pair = self.a.label if self.a is self.b else "%s / %s" % (self.a.label, self.b.label)
+        if self.kind == "interference":
+            return "%s: %s, depth %.4g mm (longest line of sight %.4g mm, %d rays)" % (
+                self.title, pair, self.depth, self.max_los, self.count)
+        return "%s: %s, area %.4g mm^2 (%d triangle pairs)" % (self.title, pair, self.area, self.count)
+
+    def selection(self):
+        """[(object, [sub-element names])] to select for this finding."""
+        out = []
+        if self.a.obj is self.b.obj:
+            out.append((self.a.obj, sorted(set(self.faces_a) | set(self.faces_b), key=lambda s: int(s[4:]))))
+        else:
+            out.append((self.a.obj, self.faces_a))
+            out.append((self.b.obj, self.faces_b))
+        return out
+
+
+class OverlapRun:
+    def __init__(self, options, model, findings, ray_report, coplanar_report, warnings):
+        self.options = options
+        self.model = model
+        self.findings = findings
+        self.ray_report = ray_report
+        self.coplanar_report = coplanar_report
+        self.warnings = warnings
+        self.group = None
+
+    def of_kind(self, kind):
+        return [f for f in self.findings if f.kind == kind]
+
+    def summary(self):
+        lines = ["Pierce overlap check of %d solids: %d interpenetrating pairs, %d contacts, %d coincident, "
+                 "%d duplicate" % (len(self.model.solids), len(self.of_kind("interference")),
+                                   len(self.of_kind("contact")), len(self.of_kind("coincident")),
+                                   len(self.of_kind("duplicate")))]
+        lines += ["  " + f.describe() for f in self.findings]
+        lines += ["Pierce: warning: " + w for w in self.warnings]
+        return "\n".join(lines)
+
+
+def _faces(meshed, prims):
+    ref = meshed.ref
+    return ref.face_names(meshed.face_of_triangle[np.asarray(sorted(set(prims)), dtype=np.int64)]) if prims else []
+
+
+def compute(objects, options, progress=None, cancel=None):
+    options.check()
+    from .locate import import_pierce
+    pierce = import_pierce()
+    refs, warnings = collect_solids(objects)
+    stage = getattr(progress, "stage", None)
+    if stage:
+        stage("Pierce: meshing solids")
+    model = build_model(refs, options.deflection, options.angular_deflection, progress=progress)
+    scene, solids = model.scene, model.solids
+
+    if stage:
+        stage("Pierce: coplanar faces")
+    cop = pierce.coplanar_overlaps(scene, tolerance=options.tolerance, progress=progress, cancel=cancel)
+    if stage:
+        stage("Pierce: interference along rays")
+    org, dirs, tmin, tmax = pierce.axis_grid_rays(scene, options.grid)
+    rays = pierce.ray_overlaps(scene, org, dirs, tmin=tmin, tmax=tmax, progress=progress, cancel=cancel)
+    parts = pierce.partitions(scene, org, dirs, tmin=tmin, tmax=tmax, progress=progress, cancel=cancel)
+
+    findings = []
+    # Interpenetrations, with the faces bounding the shared intervals.
+    recs, psol = parts.records, parts.solids
+    for pair in rays.interferences:
+        f = Finding("interference", solids[pair.a].ref, solids[pair.b].ref)
+        f.depth = pair.penetration if not math.isnan(pair.penetration) else pair.max_depth
+        f.max_los = pair.max_depth
+        f.count = pair.count
+        f.where = tuple(pair.max_depth_entry)
+        prims = {pair.a: [], pair.b: []}
+        for r in recs[recs["count"] >= 2]:
+            ids = set(int(g) for g in psol[int(r["first"]):int(r["first"]) + int(r["count"])])
+            if pair.a in ids and pair.b in ids:
+                for g, p in ((r["in_geom"], r["in_prim"]), (r["out_geom"], r["out_prim"])):
+                    if int(g) in prims:
+                        prims[int(g)].append(int(p))
+        f.faces_a = _faces(solids[pair.a], prims[pair.a])
+        f.faces_b = _faces(solids[pair.b], prims[pair.b])
+        iv = rays.intervals
+        sel = iv[(iv["ray"] == pair.max_depth_ray) & (iv["a"] == pair.a) & (iv["b"] == pair.b)]
+        if len(sel):
+            k = int(np.argmax(sel["depth"]))
+            f.segment = (tuple(sel["entry"][k]), tuple(sel["exit"][k]))
+        findings.append(f)
+
+    # Coplanar pairs, per solid pair and facing.
+    groups = {}
+    for p in cop.pairs:
+        a, b = int(p["geom_a"]), int(p["geom_b"])
+        kind = "duplicate" if a == b else ("coincident" if p["same_facing"] else "contact")
+        groups.setdefault((kind, a, b), []).append(p)
+    for (kind, a, b), pairs in sorted(groups.items(), key=lambda kv: (kv[0][1], kv[0][2], kv[0][0])):
+        f = Finding(kind, solids[a].ref, solids[b].ref)
+        f.count = len(pairs)
+        f.area = float(sum(float(p["area"]) for p in pairs))
+        biggest = max(pairs, key=lambda p: float(p["area"]))
+        f.where = tuple(float(x) for x in biggest["centroid"])
+        f.faces_a = _faces(solids[a], [int(p["prim_a"]) for p in pairs])
+        f.faces_b = _faces(solids[b], [int(p["prim_b"]) for p in pairs])
+        m = solids[a]
+        for pa in sorted({int(p["prim_a"]) for p in pairs})[:5000]:
+            f.triangles.append(tuple(tuple(m.vertices[i]) for i in m.triangles[pa]))
+        findings.append(f)
+
+    # Touching solids seen by the rays but not as coplanar triangles (curved contacts).
+    known = {(f.a, f.b) for f in findings if f.kind == "contact"}
+    for cp in rays.contacts:
+        ra, rb = solids[cp.a].ref, solids[cp.b].ref
+        if (ra, rb) in known:
+            continue
+        f = Finding("contact", ra, rb)
+        f.count = cp.count
+        f.where = tuple(cp.where)
+        f.area = math.nan
+        findings.append(f)
+    if rays.rays_ending_inside:
+        warnings.append("%d rays ended inside a solid (open mesh?)" % rays.rays_ending_inside)
+    return OverlapRun(options, model, findings, rays, cop, warnings + model.warnings)
+
+
+def create_objects(doc, run):
+    """Markers in a group 'PierceOverlaps': a red segment along each pair's deepest interval, the
+    shared triangles of each contact or coincidence in orange."""
+    import FreeCAD
+    import Part
+    group = doc.addObject("App::DocumentObjectGroup", "PierceOverlaps")
+    group.Label = "Overlap check"
+    for f in run.findings:
+        shape = None
+        if f.kind == "interference" and f.segment is not None:
+            p, q = (FreeCAD.Vector(*x) for x in f.segment)
+            if (q - p).Length > 0:
+                shape = Part.makeLine(p, q)
+        elif f.triangles:
+            faces = []
+            for tri in f.triangles:
+                pts = [FreeCAD.Vector(*x) for x in tri]
+                try:
+                    faces.append(Part.Face(Part.makePolygon(pts + [pts[0]])))
+                except Exception:  # a sliver FreeCAD cannot make a face of
+                    continue
+            shape = Part.makeCompound(faces) if faces else None
+        if shape is None:
+            continue
+        obj = doc.addObject("Part::Feature", "Overlap")
+        obj.Label = "%s %s-%s" % (f.title, f.a.label, f.b.label)
+        obj.Shape = shape
+        obj.addProperty("App::PropertyString", "Kind", "Pierce", "Finding kind").Kind = f.kind
+        obj.addProperty("App::PropertyString", "Solids", "Pierce", "Solids involved").Solids = (
+            "%s, %s" % (f.a.label, f.b.label))
+        if f.depth is not None:
+            obj.addProperty("App::PropertyFloat", "Depth", "Pierce", "Interpenetration depth (mm)").Depth = f.depth
+        vo = getattr(obj, "ViewObject", None)
+        if vo is not None:
+            colour = (1.0, 0.0, 0.0) if f.kind == "interference" else (1.0, 0.55, 0.0)
+            vo.LineColor = colour
+            vo.PointColor = colour
+            vo.ShapeColor = colour
+            vo.LineWidth = 4.0
+        group.addObject(obj)
+        f.result_object = obj
+    run.group = group
+    doc.recompute()
+    return group
+
+
+def run(objects, options, doc=None, progress=None, cancel=None):
+    result = compute(objects, options, progress=progress, cancel=cancel)
+    if options.create_objects:
+        create_objects(doc or objects[0].Document, result)
+    return result

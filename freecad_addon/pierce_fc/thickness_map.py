@@ -1,0 +1,211 @@
+"""Thickness map: per-vertex or per-face wall thickness of solids as false-colour Mesh features.
+
+GUI-free: run() takes document objects and options, returns a ThicknessRun holding the numbers and
+the result objects it created (one Mesh::Feature per solid, in a group), and a summary for the
+Report view. The analysed objects are not modified.
+"""
+import math
+
+import numpy as np
+
+from . import colormap
+from .errors import UserError
+from .selection import collect_solids
+from .tessellate import build_model
+
+METHODS = ("ray", "cone", "sphere")
+SAMPLING = ("face", "vertex")
+
+
+class ThicknessOptions:
+    def __init__(self, method="ray", per="face", deflection=0.0, angular_deflection=15.0, threshold=0.0,
+                 max_distance=math.inf, color_min=None, color_max=None, create_objects=True):
+        self.method = method          # ray | cone | sphere
+        self.per = per                # face (triangle centroids) | vertex
+        self.deflection = deflection  # mm; 0 = 0.1% of the selection's diagonal
+        self.angular_deflection = angular_deflection  # degrees
+        self.threshold = threshold    # thin below this (mm); 0 = no highlight
+        self.max_distance = max_distance
+        self.color_min = color_min    # legend range; None = the results' min / max
+        self.color_max = color_max
+        self.create_objects = create_objects
+
+    def check(self):
+        if self.method not in METHODS:
+            raise UserError("Unknown method '%s' (ray, cone or sphere)." % self.method)
+        if self.per not in SAMPLING:
+            raise UserError("Sampling must be per face or per vertex, not '%s'." % self.per)
+        if self.threshold < 0 or not math.isfinite(self.threshold):
+            raise UserError("The thin threshold must be a length >= 0.")
+        if not self.max_distance > 0:
+            raise UserError("The maximum distance must be positive.")
+        if (self.color_min is not None and self.color_max is not None and
+                not self.color_max > self.color_min):
+            raise UserError("The legend range is empty: its maximum must exceed its minimum.")
+
+
+class SolidThickness:
+    """Thickness of one solid: values per mesh vertex or triangle (NaN: none), statistics, and the
+    result object (None when objects were not created)."""
+
+    def __init__(self, meshed, values, status, stats, thin_count):
+        self.meshed = meshed
+        self.values = values
+        self.status = status
+        self.stats = stats  # pierce.SolidThickness
+        self.thin_count = thin_count
+        self.result_object = None
+
+    @property
+    def label(self):
+        return self.meshed.ref.label
+
+    @property
+    def valid(self):
+        return self.values[np.isfinite(self.values)]
+
+    def percentile(self, q):
+        v = self.valid
+        return float(np.percentile(v, q)) if len(v) else math.nan
+
+
+class ThicknessRun:
+    def __init__(self, options, model, solids, color_range, warnings):
+        self.options = options
+        self.model = model
+        self.solids = solids
+        self.color_range = color_range
+        self.warnings = warnings
+        self.group = None
+
+    def summary(self):
+        o = self.options
+        lines = []
+        for s in self.solids:
+            st = s.stats.summary
+            n = len(s.values)
+            line = ("Pierce thickness of '%s' (%s, per %s, %d samples): " % (s.label, o.method, o.per, n))
+            if st.count:
+                line += "min %.4g, P5 %.4g, median %.4g, P95 %.4g, max %.4g" % (
+                    st.min, s.percentile(5), s.percentile(50), s.percentile(95), st.max)
+            else:
+                line += "no thickness found"
+            if o.threshold > 0:
+                line += "; %d thin (< %.4g)" % (s.thin_count, o.threshold)
+            missing = n - st.count
+            if missing:
+                line += "; %d without thickness (ray escaped or no normal)" % missing
+            lines.append(line)
+        for w in self.warnings:
+            lines.append("Pierce: warning: " + w)
+        return "\n".join(lines)
+
+
+def compute(objects, options, progress=None, cancel=None):
+    """Numbers only, no document objects. progress: a pierce_fc.progress.Progress or callable."""
+    options.check()
+    pierce = _pierce()
+    refs, warnings = collect_solids(objects)
+    stage = getattr(progress, "stage", None)
+    if stage:
+        stage("Pierce: meshing solids")
+    model = build_model(refs, options.deflection, options.angular_deflection, progress=progress)
+    if stage:
+        stage("Pierce: thickness (%s)" % options.method)
+    res = pierce.thickness(model.scene, method=options.method, per=options.per,
+                           max_distance=options.max_distance, min_thickness=options.threshold,
+                           progress=progress, cancel=cancel)
+    solids = []
+    geom_of = res.solid
+    for m, st in zip(model.solids, res.solids):
+        sel = geom_of == m.geom
+        values = np.array(res.thickness[sel])
+        status = np.array(res.status[sel])
+        order = np.argsort(np.array(res.element[sel]), kind="stable")
+        solids.append(SolidThickness(m, values[order], status[order], st, int(np.count_nonzero(res.thin[sel]))))
+    valid = np.concatenate([s.valid for s in solids]) if solids else np.zeros(0)
+    lo = options.color_min if options.color_min is not None else (float(valid.min()) if len(valid) else 0.0)
+    hi = options.color_max if options.color_max is not None else (float(valid.max()) if len(valid) else 1.0)
+    if not hi > lo:
+        hi = lo + max(abs(lo) * 1e-3, 1e-9)  # a uniform wall: any non-empty range shows one colour
+    return ThicknessRun(options, model, solids, (lo, hi), warnings + model.warnings)
+
+
+def create_objects(doc, run):
+    """One false-colour Mesh::Feature per solid in a group 'PierceThickness'."""
+    import FreeCAD
+    import Mesh
+    o = run.options
+    lo, hi = run.color_range
+    group = doc.addObject("App::DocumentObjectGroup", "PierceThickness")
+    group.Label = "Thickness map"
+    for s in run.solids:
+        m = s.meshed
+        mesh = Mesh.Mesh()
+        mesh.addFacets(([FreeCAD.Vector(*p) for p in m.vertices], [tuple(int(i) for i in t) for t in m.triangles]))
+        if mesh.CountFacets != len(m.triangles) or mesh.CountPoints != len(m.vertices):
+            raise UserError("FreeCAD's mesh changed the triangles of '%s'; cannot colour it." % s.label)
+        obj = doc.addObject("Mesh::Feature", "Thickness")
+        obj.Label = "Thickness %s" % s.label
+        obj.Mesh = mesh
+        _add(obj, "App::PropertyString", "SourceObject", "Pierce", "Analysed object (name)", m.ref.obj.Name)
+        _add(obj, "App::PropertyInteger", "SolidIndex", "Pierce", "Solid of that object", m.ref.index)
+        _add(obj, "App::PropertyString", "Method", "Pierce", "Thickness method", o.method)
+        _add(obj, "App::PropertyString", "Per", "Pierce", "Samples: face (triangle) or vertex", o.per)
+        _add(obj, "App::PropertyFloat", "Deflection", "Pierce", "Tessellation deflection (mm)", run.model.deflection)
+        _add(obj, "App::PropertyFloatList", "Thickness", "Pierce", "Thickness per sample, NaN where none",
+             [float(v) for v in s.values])
+        _add(obj, "App::PropertyFloat", "ThinThreshold", "Pierce", "Thin below this (0: off)", o.threshold)
+        _add(obj, "App::PropertyInteger", "ThinCount", "Pierce", "Samples below the threshold", s.thin_count)
+        st = s.stats.summary
+        _add(obj, "App::PropertyFloat", "Minimum", "Pierce", "Smallest thickness", st.min if st.count else math.nan)
+        _add(obj, "App::PropertyFloat", "Median", "Pierce", "Median thickness", s.percentile(50))
+        _add(obj, "App::PropertyFloat", "Maximum", "Pierce", "Largest thickness", st.max if st.count else math.nan)
+        _add(obj, "App::PropertyFloat", "LegendMin", "Pierce", "Colour of the low end (red)", lo)
+        _add(obj, "App::PropertyFloat", "LegendMax", "Pierce", "Colour of the high end (blue)", hi)
+        rgb = colormap.colours(s.values, lo, hi, o.threshold)
+        # The mesh view provider shows the first colour-list property, per vertex or per facet
+        # depending on its length, when its Coloring is on.
+        _add(obj, "App::PropertyColorList", "ThicknessColors", "Pierce", "False colours",
+             [tuple(float(c) for c in row) for row in rgb])
+        for name in ("SourceObject", "SolidIndex", "Method", "Per", "Deflection", "Thickness", "ThinThreshold",
+                     "ThinCount", "Minimum", "Median", "Maximum", "LegendMin", "LegendMax"):
+            obj.setEditorMode(name, 1)  # read-only in the property editor
+        group.addObject(obj)
+        s.result_object = obj
+        show_colours(obj)
+    run.group = group
+    doc.recompute()
+    return group
+
+
+def show_colours(obj):
+    """Turns on the false colours of a result mesh in the GUI (no-op headless)."""
+    vo = getattr(obj, "ViewObject", None)
+    if vo is None:
+        return
+    for prop, value in (("Coloring", True), ("Lighting", "Two side"), ("DisplayMode", "Shaded")):
+        if hasattr(vo, prop):
+            try:
+                setattr(vo, prop, value)
+            except Exception:
+                pass
+
+
+def run(objects, options, doc=None, progress=None, cancel=None):
+    """compute(), then (when options.create_objects) the result objects in `doc` (default: the
+    first object's document)."""
+    result = compute(objects, options, progress=progress, cancel=cancel)
+    if options.create_objects:
+        create_objects(doc or objects[0].Document, result)
+    return result
+
+
+def _add(obj, kind, name, group, doc, value):
+    obj.addProperty(kind, name, group, doc)
+    setattr(obj, name, value)
+
+
+def _pierce():
+    from .locate import import_pierce
+    return import_pierce()

@@ -1,0 +1,51 @@
+"""Tiny test harness for freecadcmd scripts: freecadcmd exits 0 even when a script raises, so each
+script collects failures with Checker and ends with raise SystemExit(code) through run()."""
+import math
+import sys
+import traceback
+
+
+class Checker:
+    def __init__(self, name):
+        self.name = name
+        self.failures = 0
+        self.checks = 0
+
+    def check(self, cond, what):
+        self.checks += 1
+        status = "ok  " if cond else "FAIL"
+        print("[%s] %s: %s" % (status, self.name, what), flush=True)
+        if not cond:
+            self.failures += 1
+        return cond
+
+    def near(self, value, expected, tol, what):
+        ok = value is not None and not math.isnan(value) and abs(value - expected) <= tol
+        return self.check(ok, "%s: %r, expected %r +- %g" % (what, value, expected, tol))
+
+    def raises(self, exc_type, fn, what, contains=None):
+        try:
+            fn()
+        except exc_type as e:
+            ok = contains is None or contains.lower() in str(e).lower()
+            return self.check(ok, "%s raises %s: %s" % (what, exc_type.__name__, e))
+        except Exception as e:  # wrong exception type
+            return self.check(False, "%s raised %s instead of %s: %s" % (what, type(e).__name__,
+                                                                       exc_type.__name__, e))
+        return self.check(False, "%s did not raise %s" % (what, exc_type.__name__))
+
+
+def run(name, body):
+    """Runs body(checker) and exits with 0 only if it finished and every check passed."""
+    c = Checker(name)
+    try:
+        body(c)
+    except SystemExit:
+        raise
+    except BaseException:
+        traceback.print_exc()
+        print("[FAIL] %s: exception" % name, flush=True)
+        c.failures += 1
+    print("%s: %d checks, %d failures" % (name, c.checks, c.failures), flush=True)
+    sys.stdout.flush()
+    raise SystemExit(1 if c.failures or c.checks == 0 else 0)

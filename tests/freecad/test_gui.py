@@ -1,0 +1,160 @@
+"""FreeCAD GUI test (run under xvfb-run): activates the Pierce workbench, runs Thickness map from its
+task panel on a solid, checks bad selections give a panel message, and saves a screenshot of the 3D
+view (checked not blank) plus one of the whole window, into $PIERCE_TEST_OUT.
+
+    QTWEBENGINE_DISABLE_SANDBOX=1 xvfb-run -a -s "-screen 0 1600x1000x24" freecad test_gui.py
+"""
+import os
+import sys
+import traceback
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import fc_check  # noqa: E402
+
+OUT = os.environ.get("PIERCE_TEST_OUT", os.getcwd())
+
+
+def blank_fraction(path):
+    """Share of pixels equal to the most common colour (the background)."""
+    from PySide2 import QtGui
+    img = QtGui.QImage(path)
+    if img.isNull():
+        return 1.0, 0
+    counts = {}
+    step = 4
+    for y in range(0, img.height(), step):
+        for x in range(0, img.width(), step):
+            c = img.pixel(x, y)
+            counts[c] = counts.get(c, 0) + 1
+    total = sum(counts.values())
+    return max(counts.values()) / total, len(counts)
+
+
+def part(doc):
+    """A plate with a boss and a through hole: walls from 2 to 12 mm."""
+    import FreeCAD
+    import Part
+    plate = Part.makeBox(60, 40, 6)
+    boss = Part.makeCylinder(9, 18, FreeCAD.Vector(42, 20, 0))
+    hole = Part.makeCylinder(5, 18, FreeCAD.Vector(42, 20, 0))
+    rib = Part.makeBox(30, 2, 12, FreeCAD.Vector(4, 19, 0))
+    shape = plate.fuse([boss, rib]).cut(hole).removeSplitter()
+    obj = doc.addObject("Part::Feature", "Bracket")
+    obj.Shape = shape
+    doc.recompute()
+    return obj
+
+
+def body(c):
+    import FreeCAD
+    import FreeCADGui as Gui
+    from PySide2 import QtWidgets
+
+    Gui.activateWorkbench("PierceWorkbench")
+    c.check(Gui.activeWorkbench().MenuText == "Pierce", "Pierce workbench is active")
+    cmds = Gui.listCommands()
+    for name in ("Pierce_ThicknessMap", "Pierce_OverlapCheck", "Pierce_Shotline"):
+        c.check(name in cmds, "command %s registered" % name)
+
+    doc = FreeCAD.newDocument("PierceGui")
+    obj = part(doc)
+    Gui.SendMsgToActiveView("ViewFit")
+
+    # The command opens its task panel.
+    Gui.Selection.clearSelection()
+    Gui.runCommand("Pierce_ThicknessMap")
+    c.check(Gui.Control.activeDialog(), "Thickness map opens a task dialog")
+    Gui.Control.closeDialog()
+
+    from pierce_fc.gui.task_thickness import ThicknessPanel
+    from pierce_fc.gui.task_overlaps import OverlapPanel
+    from pierce_fc.gui.task_shotline import ShotlinePanel
+
+    # Bad selections: a message in the panel, no exception, no objects.
+    for cls in (ThicknessPanel, OverlapPanel):
+        panel = cls()
+        Gui.Control.showDialog(panel)
+        Gui.Selection.clearSelection()
+        panel.on_run()
+        c.check("nothing is selected" in panel.message.text().lower(),
+                "%s, empty selection: %r" % (cls.__name__, panel.message.text()))
+        Gui.Control.closeDialog()
+    sketchy = doc.addObject("Part::Feature", "JustAFace")
+    sketchy.Shape = obj.Shape.Faces[0]
+    panel = ThicknessPanel()
+    Gui.Control.showDialog(panel)
+    Gui.Selection.addSelection(sketchy)
+    panel.on_run()
+    c.check("no solid" in panel.message.text().lower(), "face only: %r" % panel.message.text())
+    doc.removeObject(sketchy.Name)
+    Gui.Control.closeDialog()
+
+    # Thickness map from the panel, thin walls below 3 mm.
+    panel = ThicknessPanel()
+    Gui.Control.showDialog(panel)
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(obj)
+    panel.per.setCurrentIndex(1)  # vertices: smooth colours for the picture
+    panel.deflection.setValue(0.05)
+    panel.threshold.setValue(3.0)
+    panel.on_run()
+    run = panel.last_result
+    c.check(run is not None and run.group is not None, "thickness map created: %r" % panel.message.text())
+    if run is None:
+        return
+    mesh_obj = run.solids[0].result_object
+    c.check(mesh_obj.ViewObject.Coloring, "the result mesh shows its colours")
+    c.check(not obj.ViewObject.Visibility, "the analysed solid is hidden")
+    c.check(abs(run.solids[0].stats.summary.min - 2.0) < 0.05, "thinnest wall is the 2 mm rib (%.4g)"
+            % run.solids[0].stats.summary.min)
+    c.check(run.solids[0].thin_count > 0, "thin vertices below 3 mm are marked")
+    c.check("minimum" in panel.message.text().lower(), "panel message: %r" % panel.message.text())
+    c.check(panel.legend.range is not None, "legend shows the range %s" % (panel.legend.range,))
+
+    QtWidgets.QApplication.processEvents()
+    view = Gui.ActiveDocument.ActiveView
+    view.viewIsometric()
+    view.fitAll()
+    QtWidgets.QApplication.processEvents()
+    shot = os.path.join(OUT, "freecad-thickness-view.png")
+    view.saveImage(shot, 1200, 800, "White")
+    c.check(os.path.isfile(shot), "3D view screenshot saved: " + shot)
+    bg, colours = blank_fraction(shot)
+    c.check(bg < 0.9 and colours > 20, "screenshot not blank: %.0f%% background, %d colours" % (100 * bg, colours))
+
+    window = os.path.join(OUT, "freecad-thickness-window.png")
+    mw = Gui.getMainWindow()
+    mw.resize(1500, 950)
+    QtWidgets.QApplication.processEvents()
+    c.check(mw.grab().save(window), "window screenshot saved: " + window)
+    Gui.Control.closeDialog()
+
+    # Shotline and overlap panels run on the same part.
+    panel = ShotlinePanel()
+    Gui.Control.showDialog(panel)
+    for w, x in zip(panel.origin, (42, 20, 30)):
+        w.setValue(x)
+    for w, x in zip(panel.direction, (1, 0, -1)):
+        w.setValue(x)
+    panel.markers.setChecked(False)
+    obj.ViewObject.Visibility = True
+    panel.on_run()
+    c.check(panel.table.rowCount() >= 2, "shotline table rows: %d (%s)" % (panel.table.rowCount(), panel.message.text()))
+    Gui.Control.closeDialog()
+
+
+def main():
+    code = 1
+    try:
+        fc_check.run("gui", body)
+    except SystemExit as e:
+        code = e.code
+    except BaseException:
+        traceback.print_exc()
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(code)
+
+
+from PySide2 import QtCore  # noqa: E402
+QtCore.QTimer.singleShot(0, main)
