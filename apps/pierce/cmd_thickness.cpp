@@ -251,7 +251,7 @@ std::function<int()> register_thickness(CLI::App& app) {
   cmd->add_option("--min", o->min_thickness, "Thin flag: thickness below this")->check(CLI::NonNegativeNumber);
   cmd->add_option("--max-distance", o->max_distance, "Search no farther; beyond it: no thickness (status no_exit)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--cone-rays", o->cone_rays, "Cone method: rays per sample")->check(CLI::Range(1, 1000))->capture_default_str();
+  cmd->add_option("--cone-rays", o->cone_rays, "Cone method: rays per sample")->check(CLI::Range(1, 10000))->capture_default_str();
   cmd->add_option("--cone-angle", o->cone_angle, "Cone method: full opening angle, degrees")
       ->check(CLI::Range(0.1, 179.0))
       ->capture_default_str();

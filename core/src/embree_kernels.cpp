@@ -66,7 +66,6 @@ EmbreeExactBase::EmbreeExactBase(const EmbreeAccel& acc, HitOrder order, EmbreeQ
   q_.mode = mode;
   q_.order = order;
   q_.tris = &acc.tris();
-  q_.counters = &counters;
 }
 
 bool EmbreeExactBase::setup(const Ray& ray) {
@@ -119,6 +118,8 @@ void EmbreeExactBase::trace(double lo, double hi) {
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   q_.lo = float(lo);
   q_.hi = float(hi);
+  // Pointers into this object are set per query, not once: kernels are values and may have moved.
+  q_.counters = &counters;
   rtcInitIntersectContext(&q_.ctx);
   rtcIntersect1(acc_->exact(), &q_.ctx, &rh);
   PIERCE_COUNT(counters, traversal_steps, 1);
@@ -162,13 +163,13 @@ void EmbreeNodeCullKernel::begin(const Ray& ray, std::size_t max_hits) {
   pos_ = 0;
   exhausted_ = !setup(ray);
   q_.n = max_hits == 0 ? std::numeric_limits<std::size_t>::max() : max_hits;
-  q_.hits = &batch_;
 }
 
 void EmbreeNodeCullKernel::collect() {
   batch_.clear();
   pos_ = 0;
   const double lo = q_.have_last ? std::max(double(q_.ray.tmin), q_.last.t) : double(q_.ray.tmin);
+  q_.hits = &batch_;
   trace(lo, q_.ray.tmax);
   std::sort_heap(batch_.begin(), batch_.end(), q_.order);
 }

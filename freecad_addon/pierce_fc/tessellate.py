@@ -23,11 +23,12 @@ class MeshedSolid:
 class Model:
     """Meshed solids and the pierce.Scene built from them (geometry id = position in `solids`)."""
 
-    def __init__(self, scene, solids, deflection, warnings):
+    def __init__(self, scene, solids, deflection, warnings, max_edge=0.0):
         self.scene = scene
         self.solids = solids
         self.deflection = deflection
         self.warnings = warnings
+        self.max_edge = max_edge
 
 
 def auto_deflection(shapes):
@@ -65,26 +66,37 @@ def mesh_solid(shape, deflection, angular_deflection_deg=15.0):
     return welded, tri[keep], np.asarray(owner, dtype=np.int64)[keep]
 
 
-def build_model(refs, deflection=0.0, angular_deflection_deg=15.0, progress=None):
-    """Meshes every SolidRef into one pierce.Scene. deflection 0: auto_deflection.
-    progress(done, total) is called after each solid; returning False stops with UserError."""
+def auto_max_edge(shapes):
+    """4% of the diagonal of the shapes' common bounding box: a few thousand triangles per part."""
+    return auto_deflection(shapes) * 40.0
+
+
+def build_model(refs, deflection=0.0, angular_deflection_deg=15.0, max_edge=0.0, progress=None):
+    """Meshes every SolidRef into one pierce.Scene. deflection 0: auto_deflection. max_edge > 0:
+    triangles are split until no edge is longer (None: auto_max_edge; 0: no splitting).
+    progress(done, total) is called after each solid; returning False stops with pierce.Cancelled."""
     from .locate import import_pierce
     pierce = import_pierce()
     if deflection < 0 or not math.isfinite(deflection):
         raise UserError("The deflection must be a positive length (or 0 for automatic).")
     if deflection == 0:
         deflection = auto_deflection([r.shape for r in refs])
+    if max_edge is None:
+        max_edge = auto_max_edge([r.shape for r in refs])
+    elif max_edge < 0 or not math.isfinite(max_edge):
+        raise UserError("The maximum edge length must be a positive length (or 0 for no limit).")
     scene = pierce.Scene()
     solids, warnings = [], []
     for k, ref in enumerate(refs):
         v, t, f = mesh_solid(ref.shape, deflection, angular_deflection_deg)
+        v, t, f = refine(v, t, f, max_edge)
         if len(t) == 0:
             warnings.append("'%s' gave no triangles and is skipped" % ref.label)
         else:
             geom = scene.add_mesh(v, t, name=ref.label, source=ref.obj.Name)
             solids.append(MeshedSolid(ref, v, t, f, geom))
         if progress is not None and progress(k + 1, len(refs)) is False:
-            raise UserError("Stopped while meshing.")
+            raise pierce.Cancelled("stopped while meshing")
     if not solids:
         raise UserError("None of the selected solids could be meshed.")
     for rep in pierce.mesh_report(scene):
@@ -92,4 +104,83 @@ def build_model(refs, deflection=0.0, angular_deflection_deg=15.0, progress=None
             warnings.append("the mesh of '%s' is not closed (%d open, %d non-manifold edges): rays "
                             "may leave through the gaps" % (rep.name, rep.boundary_edges,
                                                             rep.non_manifold_edges))
-    return Model(scene, solids, deflection, warnings)
+    return Model(scene, solids, deflection, warnings, max_edge)
+
+
+def refine(vertices, triangles, face_of_triangle, max_edge, max_triangles=2_000_000):
+    """Splits triangles until no edge is longer than max_edge, keeping the mesh conforming
+    (neighbours are split along the same edges: Rivara's longest-edge bisection). New vertices are
+    edge midpoints, so flat faces stay exactly flat. Returns new (vertices, triangles,
+    face_of_triangle)."""
+    if not max_edge > 0:
+        return vertices, triangles, face_of_triangle
+    verts = [tuple(v) for v in vertices]
+    tris = [list(map(int, t)) for t in triangles]
+    owner = list(map(int, face_of_triangle))
+    limit2 = max_edge * max_edge
+
+    def length2(a, b):
+        pa, pb = verts[a], verts[b]
+        return (pa[0] - pb[0]) ** 2 + (pa[1] - pb[1]) ** 2 + (pa[2] - pb[2]) ** 2
+
+    def longest(t):
+        """(length2, edge key) of t's longest edge; ties broken by vertex ids so both triangles
+        sharing an edge agree."""
+        a, b, c = tris[t]
+        return max((length2(a, b), (min(a, b), max(a, b))), (length2(b, c), (min(b, c), max(b, c))),
+                   (length2(c, a), (min(c, a), max(c, a))))
+
+    edge_tris = {}
+    for t, (a, b, c) in enumerate(tris):
+        for e in ((a, b), (b, c), (c, a)):
+            edge_tris.setdefault((min(e), max(e)), []).append(t)
+
+    def split(t, key, m):
+        """Replaces t by two triangles across the midpoint m of its edge key (winding kept)."""
+        a, b, c = tris[t]
+        # Rotate so the split edge is (a, b).
+        while (min(a, b), max(a, b)) != key:
+            a, b, c = b, c, a
+        for e in ((a, b), (b, c), (c, a)):
+            edge_tris[(min(e), max(e))].remove(t)
+        tris[t] = [a, m, c]
+        tris.append([m, b, c])
+        owner.append(owner[t])
+        n = len(tris) - 1
+        for tt, (x, y, z) in ((t, tris[t]), (n, tris[n])):
+            for e in ((x, y), (y, z), (z, x)):
+                edge_tris.setdefault((min(e), max(e)), []).append(tt)
+
+    def bisect(key):
+        a, b = key
+        pa, pb = verts[a], verts[b]
+        verts.append(((pa[0] + pb[0]) / 2, (pa[1] + pb[1]) / 2, (pa[2] + pb[2]) / 2))
+        m = len(verts) - 1
+        for t in list(edge_tris.get(key, [])):
+            split(t, key, m)
+
+    work = [t for t in range(len(tris)) if longest(t)[0] > limit2]
+    while work:
+        t = work.pop()
+        if longest(t)[0] <= limit2:
+            continue
+        # Walk the longest-edge propagation path to a pair of triangles sharing their longest edge
+        # (each step goes to a longer edge, so the walk ends), bisect that edge, then retry t.
+        cur, visited = t, set()
+        while True:
+            _, key = longest(cur)
+            others = [u for u in edge_tris[key] if u != cur]
+            if not others or longest(others[0])[1] == key or others[0] in visited:
+                before = len(tris)
+                work.extend(edge_tris[key])
+                bisect(key)
+                work.extend(range(before, len(tris)))
+                break
+            visited.add(cur)
+            cur = others[0]
+        work.append(t)
+        if len(tris) > max_triangles:
+            raise UserError("Refining to a %.4g mm edge length would make over %d triangles; choose a longer "
+                            "maximum edge length." % (max_edge, max_triangles))
+    return (np.asarray(verts, dtype=np.float64), np.asarray(tris, dtype=np.int64),
+            np.asarray(owner, dtype=np.int64))

@@ -18,12 +18,14 @@ SAMPLING = ("face", "vertex")
 
 
 class ThicknessOptions:
-    def __init__(self, method="ray", per="face", deflection=0.0, angular_deflection=15.0, threshold=0.0,
-                 max_distance=math.inf, color_min=None, color_max=None, create_objects=True):
+    def __init__(self, method="ray", per="face", deflection=0.0, angular_deflection=15.0, max_edge=None,
+                 threshold=0.0, max_distance=math.inf, color_min=None, color_max=None, create_objects=True):
         self.method = method          # ray | cone | sphere
         self.per = per                # face (triangle centroids) | vertex
         self.deflection = deflection  # mm; 0 = 0.1% of the selection's diagonal
         self.angular_deflection = angular_deflection  # degrees
+        self.max_edge = max_edge      # mm: split longer triangle edges (samples on big flat faces);
+                                      # None = 4% of the selection's diagonal, 0 = no splitting
         self.threshold = threshold    # thin below this (mm); 0 = no highlight
         self.max_distance = max_distance
         self.color_min = color_min    # legend range; None = the results' min / max
@@ -109,7 +111,8 @@ def compute(objects, options, progress=None, cancel=None):
     stage = getattr(progress, "stage", None)
     if stage:
         stage("Pierce: meshing solids")
-    model = build_model(refs, options.deflection, options.angular_deflection, progress=progress)
+    model = build_model(refs, options.deflection, options.angular_deflection, options.max_edge,
+                        progress=progress)
     if stage:
         stage("Pierce: thickness (%s)" % options.method)
     res = pierce.thickness(model.scene, method=options.method, per=options.per,
@@ -153,6 +156,8 @@ def create_objects(doc, run):
         _add(obj, "App::PropertyString", "Method", "Pierce", "Thickness method", o.method)
         _add(obj, "App::PropertyString", "Per", "Pierce", "Samples: face (triangle) or vertex", o.per)
         _add(obj, "App::PropertyFloat", "Deflection", "Pierce", "Tessellation deflection (mm)", run.model.deflection)
+        _add(obj, "App::PropertyFloat", "MaxEdge", "Pierce", "Longest triangle edge (mm, 0: not limited)",
+             run.model.max_edge)
         _add(obj, "App::PropertyFloatList", "Thickness", "Pierce", "Thickness per sample, NaN where none",
              [float(v) for v in s.values])
         _add(obj, "App::PropertyFloat", "ThinThreshold", "Pierce", "Thin below this (0: off)", o.threshold)
@@ -168,23 +173,27 @@ def create_objects(doc, run):
         # depending on its length, when its Coloring is on.
         _add(obj, "App::PropertyColorList", "ThicknessColors", "Pierce", "False colours",
              [tuple(float(c) for c in row) for row in rgb])
-        for name in ("SourceObject", "SolidIndex", "Method", "Per", "Deflection", "Thickness", "ThinThreshold",
+        for name in ("SourceObject", "SolidIndex", "Method", "Per", "Deflection", "MaxEdge", "Thickness", "ThinThreshold",
                      "ThinCount", "Minimum", "Median", "Maximum", "LegendMin", "LegendMax"):
             obj.setEditorMode(name, 1)  # read-only in the property editor
         group.addObject(obj)
         s.result_object = obj
-        show_colours(obj)
     run.group = group
     doc.recompute()
+    for s in run.solids:  # after the recompute, which rebuilds the mesh display without colours
+        show_colours(s.result_object)
     return group
 
 
 def show_colours(obj):
-    """Turns on the false colours of a result mesh in the GUI (no-op headless)."""
+    """Turns on the false colours of a result mesh in the GUI (no-op headless). Coloring is
+    switched off and on: the view provider reads the colour list when it turns on, and a
+    recompute of the mesh drops the colours while leaving Coloring set."""
     vo = getattr(obj, "ViewObject", None)
     if vo is None:
         return
-    for prop, value in (("Coloring", True), ("Lighting", "Two side"), ("DisplayMode", "Shaded")):
+    for prop, value in (("Lighting", "Two side"), ("DisplayMode", "Shaded"), ("Coloring", False),
+                        ("Coloring", True)):
         if hasattr(vo, prop):
             try:
                 setattr(vo, prop, value)

@@ -158,7 +158,7 @@ void bind_scene(pyb::module_& m) {
                " triangles>";
       });
 
-  pyb::class_<PyScene>(m, "Scene",
+  pyb::class_<PyScene>(m, "Scene", pyb::dynamic_attr(),
                        "Triangle meshes (one geometry per solid). Geometry ids are 0, 1, ... in the order added.")
       .def(pyb::init<>())
       .def(

@@ -14,20 +14,24 @@ import fc_check  # noqa: E402
 OUT = os.environ.get("PIERCE_TEST_OUT", os.getcwd())
 
 
-def blank_fraction(path):
-    """Share of pixels equal to the most common colour (the background)."""
+def image_stats(path):
+    """(share of pixels equal to the most common colour (the background), number of colours,
+    share of strongly coloured pixels (false colours, not greys)), sampling every 4th pixel."""
     from PySide2 import QtGui
     img = QtGui.QImage(path)
     if img.isNull():
-        return 1.0, 0
+        return 1.0, 0, 0.0
     counts = {}
+    vivid = 0
     step = 4
     for y in range(0, img.height(), step):
         for x in range(0, img.width(), step):
             c = img.pixel(x, y)
             counts[c] = counts.get(c, 0) + 1
+            r, g, b = (c >> 16) & 255, (c >> 8) & 255, c & 255
+            vivid += max(r, g, b) - min(r, g, b) > 80
     total = sum(counts.values())
-    return max(counts.values()) / total, len(counts)
+    return max(counts.values()) / total, len(counts), vivid / total
 
 
 def part(doc):
@@ -48,7 +52,7 @@ def part(doc):
 def body(c):
     import FreeCAD
     import FreeCADGui as Gui
-    from PySide2 import QtWidgets
+    from PySide2 import QtCore, QtWidgets
 
     Gui.activateWorkbench("PierceWorkbench")
     c.check(Gui.activeWorkbench().MenuText == "Pierce", "Pierce workbench is active")
@@ -89,14 +93,22 @@ def body(c):
     doc.removeObject(sketchy.Name)
     Gui.Control.closeDialog()
 
-    # Thickness map from the panel, thin walls below 3 mm.
+    # Thickness map from the panel, thin walls below 3 mm; a wider task view for the window picture.
+    mw = Gui.getMainWindow()
+    mw.resize(1500, 950)
+    combo = [d for d in mw.findChildren(QtWidgets.QDockWidget) if d.objectName() in ("Combo View", "ComboView")]
+    if combo:
+        mw.resizeDocks(combo, [470], QtCore.Qt.Horizontal)
     panel = ThicknessPanel()
     Gui.Control.showDialog(panel)
     Gui.Selection.clearSelection()
     Gui.Selection.addSelection(obj)
-    panel.per.setCurrentIndex(1)  # vertices: smooth colours for the picture
+    panel.per.setCurrentIndex(0)  # faces: exact on flat walls
     panel.deflection.setValue(0.05)
     panel.threshold.setValue(3.0)
+    panel.auto_range.setChecked(False)  # the plate's 60 mm length would dominate an automatic range
+    panel.range_min.setValue(2.0)
+    panel.range_max.setValue(12.0)
     panel.on_run()
     run = panel.last_result
     c.check(run is not None and run.group is not None, "thickness map created: %r" % panel.message.text())
@@ -119,20 +131,19 @@ def body(c):
     shot = os.path.join(OUT, "freecad-thickness-view.png")
     view.saveImage(shot, 1200, 800, "White")
     c.check(os.path.isfile(shot), "3D view screenshot saved: " + shot)
-    bg, colours = blank_fraction(shot)
+    bg, colours, vivid = image_stats(shot)
     c.check(bg < 0.9 and colours > 20, "screenshot not blank: %.0f%% background, %d colours" % (100 * bg, colours))
+    c.check(vivid > 0.05, "the false colours are visible: %.0f%% coloured pixels" % (100 * vivid))
 
-    window = os.path.join(OUT, "freecad-thickness-window.png")
-    mw = Gui.getMainWindow()
-    mw.resize(1500, 950)
+    window = os.path.join(OUT, "freecad-thickness-panel.png")
     QtWidgets.QApplication.processEvents()
-    c.check(mw.grab().save(window), "window screenshot saved: " + window)
+    c.check(panel.form.grab().save(window), "task panel screenshot saved: " + window)
     Gui.Control.closeDialog()
 
     # Shotline and overlap panels run on the same part.
     panel = ShotlinePanel()
     Gui.Control.showDialog(panel)
-    for w, x in zip(panel.origin, (42, 20, 30)):
+    for w, x in zip(panel.origin, (30, 20, 30)):
         w.setValue(x)
     for w, x in zip(panel.direction, (1, 0, -1)):
         w.setValue(x)

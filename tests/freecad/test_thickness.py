@@ -49,10 +49,17 @@ def body(c):
         c.near(float(np.median(s.values[x_faces])), width, 1e-4, "%s thickness across x (own width)" % label)
         c.near(float(np.min(s.values)), min(width, 10.0), 1e-4, "%s min thickness" % label)
 
-    # Thin highlight: faces of the narrow box across x are below a 5 mm threshold.
+    # Thin highlight: the narrow box's triangles facing x (4 mm across) are thin below 5 mm, the
+    # others (10 mm across) are not.
     run = thickness_map.run([b], ThicknessOptions(per="face", threshold=5.0), doc=doc)
     s = run.solids[0]
-    c.check(s.thin_count == 4, "narrow box: 4 x-facing triangles thin below 5 mm (got %d)" % s.thin_count)
+    m = s.meshed
+    n = np.cross(m.vertices[m.triangles[:, 1]] - m.vertices[m.triangles[:, 0]],
+                 m.vertices[m.triangles[:, 2]] - m.vertices[m.triangles[:, 0]])
+    x_facing = int(np.count_nonzero(np.abs(n[:, 0]) > 0.99 * np.linalg.norm(n, axis=1)))
+    c.check(len(m.triangles) > 12, "long edges were split (%d triangles)" % len(m.triangles))
+    c.check(s.thin_count == x_facing, "narrow box: the %d x-facing triangles are thin below 5 mm (got %d)"
+            % (x_facing, s.thin_count))
     colours = {tuple(round(x, 3) for x in col[:3]) for col in s.result_object.ThicknessColors}
     c.check((1.0, 0.0, 1.0) in colours, "thin triangles are magenta (colours %s)" % sorted(colours))
 
@@ -75,8 +82,27 @@ def body(c):
                                                       create_objects=False))
     c.near(run.solids[0].percentile(50), 0.05, 0.002, "hollow sphere, sphere-method median")
     c.check(run.solids[0].result_object is None, "create_objects=False makes no objects")
-    run = thickness_map.run([cube], ThicknessOptions(per="face", method="sphere", create_objects=False))
-    c.near(run.solids[0].percentile(50), 20.0 / 3.0, 1e-3, "cube sphere-method median")
+    run = thickness_map.run([cube], ThicknessOptions(per="face", method="sphere", max_edge=0, create_objects=False))
+    c.near(run.solids[0].percentile(50), 20.0 / 3.0, 1e-3, "cube (12 triangles) sphere-method median")
+    c.check(len(run.solids[0].values) == 12, "max_edge=0: CAD triangles kept as they are")
+
+    # Cancelling (a token set before or during the run, or a progress callback saying no) raises
+    # pierce.Cancelled and adds nothing to the document.
+    from pierce_fc.locate import import_pierce
+    from pierce_fc.progress import Progress
+    pierce = import_pierce()
+    count = len(doc.Objects)
+    token = pierce.CancelToken()
+    token.cancel()
+    c.raises(pierce.Cancelled, lambda: thickness_map.run([cube], ThicknessOptions(), doc=doc, cancel=token),
+             "run with a cancelled token")
+    with Progress("test", cancel=token) as progress:
+        c.raises(pierce.Cancelled, lambda: thickness_map.run([cube], ThicknessOptions(), doc=doc, progress=progress),
+                 "run whose progress reports a cancelled token")
+    c.raises(pierce.Cancelled, lambda: thickness_map.run([cube], ThicknessOptions(), doc=doc,
+                                                         progress=lambda done, total: False),
+             "run whose progress callback returns False")
+    c.check(len(doc.Objects) == count, "cancelled runs add no objects")
 
     # Results are ordinary objects that can be deleted.
     group = doc.getObject("PierceThickness")

@@ -27,6 +27,11 @@ class ThicknessPanel(PanelBase):
                             "but vertices on sharp edges use an averaged normal")
         self.deflection = double_spin(0.0, 0.0, 1e6, special="automatic (0.1% of size)", step=0.01)
         self.angular = double_spin(15.0, 1.0, 90.0, decimals=1, suffix=" deg")
+        self.split = QtWidgets.QCheckBox("Split triangle edges longer than")
+        self.split.setChecked(True)
+        self.split.setToolTip("More samples on large flat faces (whose CAD triangles are few and big)")
+        self.max_edge = double_spin(0.0, 0.0, 1e6, special="automatic (4% of size)", step=0.1)
+        self.split.toggled.connect(self.max_edge.setEnabled)
         self.threshold = double_spin(0.0, 0.0, 1e6, special="off", step=0.1)
         self.threshold.setToolTip("Samples thinner than this are coloured magenta")
         self.auto_range = QtWidgets.QCheckBox("from the results")
@@ -42,6 +47,7 @@ class ThicknessPanel(PanelBase):
         f.addRow("Samples", self.per)
         f.addRow("Deflection", self.deflection)
         f.addRow("Angular deflection", self.angular)
+        f.addRow(self.split, self.max_edge)
         f.addRow("Thin below", self.threshold)
         f.addRow("Legend range", self.auto_range)
         f.addRow("  min (red)", self.range_min)
@@ -62,6 +68,7 @@ class ThicknessPanel(PanelBase):
         return ThicknessOptions(method=self.method.currentText(),
                                 per="face" if self.per.currentIndex() == 0 else "vertex",
                                 deflection=self.deflection.value(), angular_deflection=self.angular.value(),
+                                max_edge=(self.max_edge.value() or None) if self.split.isChecked() else 0.0,
                                 threshold=self.threshold.value(),
                                 color_min=None if auto else self.range_min.value(),
                                 color_max=None if auto else self.range_max.value())
