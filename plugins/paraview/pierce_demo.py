@@ -14,7 +14,8 @@ Writes, with the arrays ParaView colours by:
   overlap_pairs.csv    interfering, touching and coplanar solid pairs
   partitions.vtp       one segment per ray partition: RayId, SolidId, SolidCount, Depth, ...
   partitions.csv       the same as a table, with solid names
-The thickness values are those of `pierce thickness MODEL --per face` on the same model.
+The thickness values are those of `pierce thickness MODEL --per face`, the overlap pairs those of
+`pierce overlaps MODEL` on the same model (tests/paraview/check_demo_against_cli.py checks it).
 """
 import argparse
 import os
@@ -81,11 +82,12 @@ def main(argv):
 
     out = lambda name: os.path.join(args.out, name)  # noqa: E731
     SaveData(out("thickness.vtm"), proxy=OutputPort(thickness, 0))
-    SaveData(out("thickness_stats.csv"), proxy=OutputPort(thickness, 1))
+    csv = dict(Precision=17, UseScientificNotation=1)  # full double precision
+    SaveData(out("thickness_stats.csv"), proxy=OutputPort(thickness, 1), **csv)
     SaveData(out("overlaps.vtm"), proxy=OutputPort(overlaps, 0))
-    SaveData(out("overlap_pairs.csv"), proxy=OutputPort(overlaps, 1))
+    SaveData(out("overlap_pairs.csv"), proxy=OutputPort(overlaps, 1), **csv)
     SaveData(out("partitions.vtp"), proxy=OutputPort(classify, 0))
-    SaveData(out("partitions.csv"), proxy=OutputPort(classify, 1))
+    SaveData(out("partitions.csv"), proxy=OutputPort(classify, 1), **csv)
 
     stats = servermanager.Fetch(thickness, None, None, 1)
     for row in range(stats.GetNumberOfRows()):
@@ -97,4 +99,6 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1:]))
+    # No sys.exit on success: pvbatch would then tear OpenGL down after the X display.
+    if main(sys.argv[1:]):
+        sys.exit(1)

@@ -121,4 +121,8 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    # Fall off the end on success: sys.exit after rendering makes pvbatch tear the OpenGL context
+    # down after the X display and fail with GLXBadContext.
+    status = main()
+    if status:
+        sys.exit(status)

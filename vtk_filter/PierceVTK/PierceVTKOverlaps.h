@@ -16,7 +16,7 @@ struct Surfaces;
 struct OverlapSettings {
   bool find_coplanar = true;
   double tolerance = 0.0;
-  int rays_per_axis = 64;  // 0: no ray analysis
+  int rays_per_axis = 128;  // 0: no ray analysis
   double epsilon_rel = 1e-5;
 };
 

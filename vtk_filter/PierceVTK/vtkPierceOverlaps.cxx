@@ -19,7 +19,7 @@ vtkStandardNewMacro(vtkPierceOverlaps);
 vtkPierceOverlaps::vtkPierceOverlaps()
   : FindCoplanar(true)
   , Tolerance(0.0)
-  , RaysPerAxis(64)
+  , RaysPerAxis(128)
   , EpsilonRel(1e-5)
 {
   this->SetNumberOfInputPorts(1);

@@ -56,7 +56,7 @@ public:
   ///@{
   /**
    * Rays per axis and direction of the interference grid (n x n rays along x, y and z); 0 skips
-   * the ray analysis. Default 64.
+   * the ray analysis. Default 128, as `pierce overlaps` (--rays axes:n=128).
    */
   vtkSetClampMacro(RaysPerAxis, int, 0, 4096);
   vtkGetMacro(RaysPerAxis, int);

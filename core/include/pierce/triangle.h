@@ -4,6 +4,7 @@
 // point (eps, eps^2) of the sheared plane. That point lies on no edge line, so a ray
 // through a shared edge or vertex of a consistently meshed surface crosses exactly one
 // of the triangles around it, whatever their winding.
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <utility>
@@ -64,8 +65,9 @@ inline bool intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const Vec3<T>
   T W = bx * ay - by * ax;
   int su, sv, sw;
   if constexpr (sizeof(T) < sizeof(double)) {
-    if (U == T(0) || V == T(0) || W == T(0)) {
-      // Products of floats are exact in double: the sign of each edge function becomes exact.
+    if (U == T(0) || V == T(0) || W == T(0) || !std::isfinite(U + V + W)) {
+      // Products of floats are exact in double: the sign of each edge function becomes exact
+      // (also where a float product overflowed: inf - inf has no sign).
       const double Ud = double(cx) * double(by) - double(cy) * double(bx);
       const double Vd = double(ax) * double(cy) - double(ay) * double(cx);
       const double Wd = double(bx) * double(ay) - double(by) * double(ax);
@@ -82,15 +84,17 @@ inline bool intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const Vec3<T>
     su = detail::perturbed_sign(exact::diff_of_products_sign(cx, by, cy, bx), cx, cy, bx, by);
     sv = detail::perturbed_sign(exact::diff_of_products_sign(ax, cy, ay, cx), ax, ay, cx, cy);
     sw = detail::perturbed_sign(exact::diff_of_products_sign(bx, ay, by, ax), bx, by, ax, ay);
-    // Rounded values of the wrong sign (or false zeros) would spoil det's sign for the facing:
-    // replace them by the smallest value of the exact sign. Only t of an almost edge-on
-    // triangle is affected, and t is clamped into the triangle's box below.
-    auto fix = [](T& e, int s) {
-      if (s != 0 && (e > T(0) ? 1 : (e < T(0) ? -1 : 0)) != s) e = T(s) * std::numeric_limits<T>::denorm_min();
-    };
-    if (su != 0 && su == sv && su == sw) fix(U, su), fix(V, sv), fix(W, sw);
   }
   if (su == 0 || su != sv || su != sw) return false;
+  // Values that disagree with their exact sign (a double's false zero or wrong sign, a value that
+  // underflowed, an exact zero decided by the tie rule) would spoil det: replace them by the
+  // smallest normal value of the exact sign (normal: immune to flush-to-zero modes), so det is
+  // never zero and has the exact facing. Only t of an almost edge-on triangle is affected, and t
+  // is clamped into the triangle's box below.
+  auto fix = [](T& e, int s) {
+    if ((e > T(0) ? 1 : (e < T(0) ? -1 : 0)) != s) e = T(s) * std::numeric_limits<T>::min();
+  };
+  fix(U, su), fix(V, sv), fix(W, sw);
 
   const T az = r.sz * a[r.kz], bz = r.sz * b[r.kz], cz = r.sz * c[r.kz];
   // Sum the per-vertex terms in an order fixed by the vertices' positions, not by their order in
@@ -105,8 +109,11 @@ inline bool intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const Vec3<T>
   if (detail::lex_less(*p[o[1]], *p[o[0]])) std::swap(o[0], o[1]);
   const T det = (w[o[0]] + w[o[1]]) + w[o[2]];
   if (det == T(0)) return false;  // ray lies in the triangle's plane
-  const T tnum = (w[o[0]] * z[o[0]] + w[o[1]] * z[o[1]]) + w[o[2]] * z[o[2]];
-  T t = tnum / det;
+  // t as the barycentric combination of the corners' z: the weights lie in [0, 1], so t cannot
+  // overflow where the corners' z do not (the products w * z would, w being quadratic).
+  const T inv_det = T(1) / det;
+  const T g[3] = {U * inv_det, V * inv_det, W * inv_det};
+  T t = (g[o[0]] * z[o[0]] + g[o[1]] * z[o[1]]) + g[o[2]] * z[o[2]];
 
   const Span<T> box = slab(r, vmin(vmin(p0, p1), p2), vmax(vmax(p0, p1), p2));
   const T wf = r.widen(box.tf);
@@ -119,10 +126,9 @@ inline bool intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const Vec3<T>
   t = t < box.tn ? box.tn : (t > t_hi ? t_hi : t);
   if (!(t >= tlo && t <= thi)) return false;
 
-  const T inv_det = T(1) / det;
   out.t = t;
-  out.u = V * inv_det;
-  out.v = W * inv_det;
+  out.u = g[1];
+  out.v = g[2];
   out.enter = det > T(0);
   return true;
 }

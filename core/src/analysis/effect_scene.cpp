@@ -15,7 +15,7 @@ namespace pierce::analysis {
 
 namespace {
 
-using json = nlohmann::json;
+using json = nlohmann::ordered_json;
 namespace fs = std::filesystem;
 
 // Reads values out of the document, naming the key path in every error.
