@@ -15,5 +15,6 @@ std::function<int()> register_thickness(CLI::App& app);
 std::function<int()> register_overlaps(CLI::App& app);
 std::function<int()> register_shot(CLI::App& app);
 std::function<int()> register_gqa(CLI::App& app);
+std::function<int()> register_run(CLI::App& app);
 
 }  // namespace pierce::cli

@@ -50,6 +50,16 @@ fs::path temp_dir() {
   return dir;
 }
 
+// Removes the temporary directory when the test program ends.
+class TempDirCleanup : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(temp_dir(), ec);
+  }
+};
+[[maybe_unused]] const ::testing::Environment* const kCleanup = ::testing::AddGlobalTestEnvironment(new TempDirCleanup);
+
 TopLoc_Location at(double x, double y, double z) {
   gp_Trsf t;
   t.SetTranslation(gp_Vec(x, y, z));

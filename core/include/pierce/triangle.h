@@ -109,11 +109,15 @@ inline bool intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const Vec3<T>
   if (detail::lex_less(*p[o[1]], *p[o[0]])) std::swap(o[0], o[1]);
   const T det = (w[o[0]] + w[o[1]]) + w[o[2]];
   if (det == T(0)) return false;  // ray lies in the triangle's plane
-  // t as the barycentric combination of the corners' z: the weights lie in [0, 1], so t cannot
-  // overflow where the corners' z do not (the products w * z would, w being quadratic).
   const T inv_det = T(1) / det;
-  const T g[3] = {U * inv_det, V * inv_det, W * inv_det};
-  T t = (g[o[0]] * z[o[0]] + g[o[1]] * z[o[1]]) + g[o[2]] * z[o[2]];
+  const T tnum = (w[o[0]] * z[o[0]] + w[o[1]] * z[o[1]]) + w[o[2]] * z[o[2]];
+  T t = tnum / det;  // one rounding of exact terms where the coordinates are small dyadics
+  if (!std::isfinite(t)) {
+    // tnum is cubic in the coordinates and overflowed: use the corners' barycentric weights,
+    // which lie in [0, 1], so t cannot overflow where the corners' z do not.
+    const T g[3] = {U * inv_det, V * inv_det, W * inv_det};
+    t = (g[o[0]] * z[o[0]] + g[o[1]] * z[o[1]]) + g[o[2]] * z[o[2]];
+  }
 
   const Span<T> box = slab(r, vmin(vmin(p0, p1), p2), vmax(vmax(p0, p1), p2));
   const T wf = r.widen(box.tf);
@@ -124,11 +128,12 @@ inline bool intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const Vec3<T>
   // max(tn, tf) <= wf, so every enclosing box still contains t.
   const T t_hi = box.tf > box.tn ? box.tf : box.tn;
   t = t < box.tn ? box.tn : (t > t_hi ? t_hi : t);
-  if (!(t >= tlo && t <= thi)) return false;
+  // Not finite: a distance beyond T's range (a tiny direction), never reported.
+  if (!(t >= tlo && t <= thi) || !std::isfinite(t)) return false;
 
   out.t = t;
-  out.u = g[1];
-  out.v = g[2];
+  out.u = V * inv_det;
+  out.v = W * inv_det;
   out.enter = det > T(0);
   return true;
 }

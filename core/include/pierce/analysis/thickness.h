@@ -8,7 +8,10 @@
 //    function of Shapira et al. 2008 (rays farther than one standard deviation from the median
 //    dropped, the rest averaged with weights 1/angle to the axis) or as their median;
 //  - sphere: diameter of the largest ball inside the solid touching the sample point
-//    (shrinking-ball iteration on closest-point queries, started from the ray thickness).
+//    (shrinking-ball iteration on closest-point queries, started from the ray thickness). The
+//    triangles through the sample point are left out of the queries (a ball tangent at a mesh
+//    vertex always cuts its tilted neighbours), so at sharp convex edges and corners the ball is
+//    bounded only by the faces away from the point: the method is meant for curved walls.
 //
 // Open meshes: a ray that finds no exit (or none within max_distance) gives NaN with status
 // no_exit, never a number.
