@@ -218,6 +218,24 @@ int main(int argc, char** argv) {
                   c.d.expected, c.d.missed, c.d.extra, c.d.duplicated, c.d.out_of_order, c.d.wrong_enter);
     }
   }
+  std::printf("\n### What double costs\n\n");
+  std::printf("Kernel time over the families whose input float holds (one thread, all rays, all hits):\n\n");
+  std::printf("| kernel | float (ms) | double (ms) | double / float |\n|---|---:|---:|---:|\n");
+  const std::pair<KernelKind, KernelKind> pairs[] = {{KernelKind::restart, KernelKind::restart_d},
+                                                     {KernelKind::queue, KernelKind::queue_d},
+                                                     {KernelKind::nodecull, KernelKind::nodecull_d},
+                                                     {KernelKind::filter, KernelKind::filter_d},
+                                                     {KernelKind::buffered, KernelKind::buffered_d}};
+  for (const auto& [kf, kd] : pairs) {
+    double tf = 0, td = 0;
+    for (const auto& f : family_order) {
+      if (!info[f].float_exact) continue;
+      tf += own[f][kf].seconds;
+      td += own[f][kd].seconds;
+    }
+    if (tf > 0 && td > 0)
+      std::printf("| %s | %.1f | %.1f | %.2f |\n", std::string(kernel_name(kf)).c_str(), 1e3 * tf, 1e3 * td, td / tf);
+  }
   std::printf("\nTotal run time %.1f s (oracle included). Exact kernels %s.\n", total,
               claim_broken ? "DIFFER FROM THE ORACLE (see stderr)" : "all match the oracle exactly");
   return claim_broken ? 1 : 0;

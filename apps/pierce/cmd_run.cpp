@@ -87,7 +87,10 @@ void write_intervals_csv(std::FILE* f, const Scene& s, const EffectsConfig& cfg,
   std::fputs("ray,kind,solids,t_in,t_out,los\n", f);
   auto names = [&](std::span<const std::uint32_t> ids) {
     std::string t;
-    for (std::size_t k = 0; k < ids.size(); ++k) t += (k ? "+" : "") + solid_label(s, ids[k]);
+    for (std::size_t k = 0; k < ids.size(); ++k) {
+      if (k) t += '+';
+      t += solid_label(s, ids[k]);
+    }
     return csv_field(t);
   };
   for (const ClassInterval& c : r.class_intervals) {

@@ -75,7 +75,10 @@ std::vector<Ray> make_rays(const ShotCli& o, const Scene& scene) {
 std::string solids_text(const Scene& s, const ShotRow& r, const CsgExpr* csg, const char* sep) {
   if (r.kind == ShotKind::region) return csg->text;
   std::string t;
-  for (std::size_t i = 0; i < r.solids.size(); ++i) t += (i ? sep : "") + solid_label(s, r.solids[i]);
+  for (std::size_t i = 0; i < r.solids.size(); ++i) {
+    if (i) t += sep;
+    t += solid_label(s, r.solids[i]);
+  }
   return t;
 }
 

@@ -113,6 +113,8 @@ def compute(objects, options, progress=None, cancel=None):
     from .locate import import_pierce
     pierce = import_pierce()
     refs, warnings = collect_solids(objects)
+    if cancel is not None and cancel.cancelled:
+        raise pierce.Cancelled("cancelled before start")
     stage = getattr(progress, "stage", None)
     if stage:
         stage("Pierce: meshing solids")

@@ -107,6 +107,8 @@ def shoot(objects, origins, directions, options, progress=None, cancel=None):
     if np.any(np.linalg.norm(directions, axis=1) == 0):
         raise UserError("The ray direction must not be zero.")
     refs, warnings = collect_solids(objects)
+    if cancel is not None and cancel.cancelled:
+        raise pierce.Cancelled("cancelled before start")
     stage = getattr(progress, "stage", None)
     if stage:
         stage("Pierce: meshing solids")

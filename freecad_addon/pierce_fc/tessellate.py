@@ -112,12 +112,17 @@ def refine(vertices, triangles, face_of_triangle, max_edge, max_triangles=2_000_
     (neighbours are split along the same edges: Rivara's longest-edge bisection). New vertices are
     edge midpoints, so flat faces stay exactly flat. Returns new (vertices, triangles,
     face_of_triangle)."""
-    if not max_edge > 0:
+    if not max_edge > 0 or len(triangles) == 0:
+        return vertices, triangles, face_of_triangle
+    limit2 = max_edge * max_edge
+    v, t = np.asarray(vertices, dtype=np.float64), np.asarray(triangles, dtype=np.int64)
+    edge2 = np.max([np.sum((v[t[:, i]] - v[t[:, (i + 1) % 3]]) ** 2, axis=1) for i in range(3)], axis=0)
+    too_long = np.nonzero(edge2 > limit2)[0]
+    if len(too_long) == 0:  # the usual case on finely tessellated curved faces: nothing to do
         return vertices, triangles, face_of_triangle
     verts = [tuple(v) for v in vertices]
     tris = [list(map(int, t)) for t in triangles]
     owner = list(map(int, face_of_triangle))
-    limit2 = max_edge * max_edge
 
     def length2(a, b):
         pa, pb = verts[a], verts[b]
@@ -159,7 +164,7 @@ def refine(vertices, triangles, face_of_triangle, max_edge, max_triangles=2_000_
         for t in list(edge_tris.get(key, [])):
             split(t, key, m)
 
-    work = [t for t in range(len(tris)) if longest(t)[0] > limit2]
+    work = [int(i) for i in too_long]
     while work:
         t = work.pop()
         if longest(t)[0] <= limit2:

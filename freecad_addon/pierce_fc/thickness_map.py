@@ -108,6 +108,8 @@ def compute(objects, options, progress=None, cancel=None):
     options.check()
     pierce = _pierce()
     refs, warnings = collect_solids(objects)
+    if cancel is not None and cancel.cancelled:
+        raise pierce.Cancelled("cancelled before start")
     stage = getattr(progress, "stage", None)
     if stage:
         stage("Pierce: meshing solids")

@@ -124,5 +124,37 @@ TEST(TieOrder, TouchingPlatesShareTAndFollowThePolicy) {
   }
 }
 
+// Copies of one face listed with rotated corners and either winding are the same surface: every
+// kernel reports all their crossings at one t, so only the tie policy orders them.
+TEST(TieOrder, DuplicatedFacesInAnyCornerOrderShareT) {
+  const gen::Mesh base = gen::box({0, 0, 0}, {1, 1, 1});
+  gen::Mesh m{"rotated", base.vertices, {}};
+  for (int copy = 0; copy < 6; ++copy)
+    for (Tri t : base.triangles) {
+      std::rotate(t.begin(), t.begin() + copy % 3, t.end());
+      if (copy >= 3) std::swap(t[1], t[2]);
+      m.triangles.push_back(t);
+    }
+  const auto w = make_world({m});
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> U(0.3, 0.7), D(-0.1, 0.1);
+  for (TieOrder tie : kTieOrders)
+    for (KernelKind k : exact_kernels()) {
+      HitIterator it(w->accel, k, {HitOrder{tie}});
+      for (int i = 0; i < 20; ++i) {
+        const Ray r{{U(rng), U(rng), -1.0}, {D(rng), D(rng), 1.0}};
+        const auto hits = kernel_hits(it, r);
+        ASSERT_EQ(hits.size(), 12u) << kernel_name(k) << " " << str(r);
+        for (std::size_t j = 1; j < 6; ++j) {
+          EXPECT_EQ(hits[j].t, hits[0].t) << kernel_name(k) << " " << str(hits[j]);
+          EXPECT_EQ(hits[6 + j].t, hits[6].t) << kernel_name(k) << " " << str(hits[6 + j]);
+        }
+        if (tie == TieOrder::leave_before_enter) {  // at the bottom face the 3 reversed copies leave first
+          for (std::size_t j = 0; j < 6; ++j) EXPECT_EQ(hits[j].enter, j >= 3) << kernel_name(k) << " hit " << j;
+        }
+      }
+    }
+}
+
 }  // namespace
 }  // namespace pierce::test

@@ -102,7 +102,7 @@ class ProgressAndCancelTest(unittest.TestCase):
         for c in pierce.gen.cube_grid(6):
             cls.scene.add(c)
         rng = np.random.default_rng(1)
-        n = 1_000_000
+        n = 400_000
         cls.org = np.column_stack([rng.uniform(0, 6, n), rng.uniform(0, 6, n), np.full(n, -1.0)])
         cls.dir = np.tile([0.0, 0.0, 1.0], (n, 1))
 
@@ -162,7 +162,7 @@ class ProgressAndCancelTest(unittest.TestCase):
         t = threading.Thread(target=ticker)
         t.start()
         try:
-            pierce.trace(self.scene, self.org[:300000], self.dir[:300000], kernel="restart")
+            pierce.trace(self.scene, self.org[:200000], self.dir[:200000], kernel="restart")
         finally:
             stop.set()
             t.join()

@@ -94,6 +94,9 @@ inline bool intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const Vec3<T>
   auto fix = [](T& e, int s) {
     if ((e > T(0) ? 1 : (e < T(0) ? -1 : 0)) != s) e = T(s) * std::numeric_limits<T>::min();
   };
+  // t keeps the unfixed values: a tie-decided zero must add nothing to t, or a ray starting on a
+  // vertex or edge would see that surface at a tiny t of either sign instead of exactly at 0.
+  const T e[3] = {U, V, W};
   fix(U, su), fix(V, sv), fix(W, sw);
 
   const T az = r.sz * a[r.kz], bz = r.sz * b[r.kz], cz = r.sz * c[r.kz];
@@ -110,7 +113,7 @@ inline bool intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const Vec3<T>
   const T det = (w[o[0]] + w[o[1]]) + w[o[2]];
   if (det == T(0)) return false;  // ray lies in the triangle's plane
   const T inv_det = T(1) / det;
-  const T tnum = (w[o[0]] * z[o[0]] + w[o[1]] * z[o[1]]) + w[o[2]] * z[o[2]];
+  const T tnum = (e[o[0]] * z[o[0]] + e[o[1]] * z[o[1]]) + e[o[2]] * z[o[2]];
   T t = tnum / det;  // one rounding of exact terms where the coordinates are small dyadics
   if (!std::isfinite(t)) {
     // tnum is cubic in the coordinates and overflowed: use the corners' barycentric weights,
