@@ -207,6 +207,11 @@ int run_scene(const RunCli& o) {
     if (p->empty()) continue;
     if (!seen.insert(std::filesystem::absolute(*p).lexically_normal().string()).second)
       throw InputError(o.scene + ": output '" + *p + "' is named twice");
+    // Output directories named by the scene (or --out-dir) are created.
+    const std::filesystem::path dir = std::filesystem::path(*p).parent_path();
+    std::error_code ec;
+    if (!dir.empty() && !std::filesystem::exists(dir, ec) && !std::filesystem::create_directories(dir, ec))
+      throw InputError(*p + ": cannot create directory " + dir.string() + ": " + ec.message());
     OutputFile::check_target(*p, o.force);
   }
 

@@ -144,6 +144,7 @@ TEST(Gqa, GapLimitsFilterGaps) {
                        gen::box({3, 0, 0}, {4, 1, 1}, "c")});
   GqaOptions o;
   o.gap_max = 0.1;
+  o.max_n = 64;  // not about convergence
   const GqaResult r = run_gqa(w->accel, o);
   ASSERT_EQ(r.gaps.size(), 1u);
   EXPECT_EQ(r.gaps[0].a, 0u);

@@ -153,6 +153,32 @@ def body(c):
     c.check(panel.table.rowCount() >= 2, "shotline table rows: %d (%s)" % (panel.table.rowCount(), panel.message.text()))
     Gui.Control.closeDialog()
 
+    # Overlap check: clicking the interpenetration row selects the faces bounding it.
+    import Part
+    a = doc.addObject("Part::Feature", "BoxA")
+    a.Shape = Part.makeBox(10, 10, 10, FreeCAD.Vector(0, 100, 0))
+    b = doc.addObject("Part::Feature", "BoxB")
+    b.Shape = Part.makeBox(10, 6, 6, FreeCAD.Vector(7.5, 102, 2))  # no shared planes: only the overlap
+    doc.recompute()
+    panel = OverlapPanel()
+    Gui.Control.showDialog(panel)
+    panel.grid.setValue(16)
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(a)
+    Gui.Selection.addSelection(b)
+    panel.on_run()
+    rows = [panel.table.item(r, 0).text() for r in range(panel.table.rowCount())]
+    c.check(rows == ["Interpenetration"], "overlap table: %s (%s)" % (rows, panel.message.text()))
+    if rows:
+        c.check(panel.table.item(0, 3).text() == "2.5", "depth column: %r" % panel.table.item(0, 3).text())
+        Gui.Selection.clearSelection()
+        panel.table.selectRow(0)
+        QtWidgets.QApplication.processEvents()
+        picked = {(s.ObjectName, n) for s in Gui.Selection.getSelectionEx() for n in s.SubElementNames}
+        c.check(("BoxA", "Face2") in picked and ("BoxB", "Face1") in picked,
+                "clicking the row selects the bounding faces: %s" % sorted(picked))
+    Gui.Control.closeDialog()
+
 
 def main():
     code = 1

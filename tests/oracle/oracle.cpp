@@ -87,7 +87,7 @@ OracleResult Oracle<T>::trace(const Ray& ray, HitOrder order) const {
   const bool has_tmin = !std::isinf(tr.tmin), has_tmax = !std::isinf(tr.tmax);
   const Exact tmin_x = has_tmin ? Exact(double(tr.tmin)) : Exact();
   const Exact tmax_x = has_tmax ? Exact(double(tr.tmax)) : Exact();
-  const Exact t_limit(double(std::numeric_limits<T>::max()));
+  const Exact t_limit{double(std::numeric_limits<T>::max())};
 
   std::vector<VertexData> vd(verts_.size());
   for (std::size_t i = 0; i < verts_.size(); ++i) {

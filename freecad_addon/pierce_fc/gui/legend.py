@@ -19,7 +19,7 @@ class Legend(QtWidgets.QWidget):
         if self.range is None:
             return
         p = QtGui.QPainter(self)
-        w, h = self.width(), self.height()
+        w = self.width()
         bar = QtCore.QRect(4, 4, w - 8, 18)
         grad = QtGui.QLinearGradient(bar.left(), 0, bar.right(), 0)
         for k, (r, g, b) in enumerate(colormap.RAMP):

@@ -19,7 +19,7 @@ display = Show(thickness, view)
 ColorBy(display, ("CELLS", "Thickness"))
 display.SetScalarBarVisibility(view, True)
 lut = GetColorTransferFunction("Thickness")
-lut.ApplyPreset("Turbo", True)
+lut.ApplyPreset("Jet", True)
 lut.RescaleTransferFunction(2.0, 10.0)
 view.CameraPosition = [26, -22, 20]
 view.CameraFocalPoint = [5, 5, 1.5]

@@ -1,0 +1,211 @@
+// The `pierce shot`, `pierce gqa` and `pierce run` commands end to end: output formats, JSON keys,
+// error messages and exit codes, no clobbering without --force.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "pierce/generators.h"
+
+namespace pierce {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int code = -1;
+  std::string out, err;
+};
+
+class CsgCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    static std::atomic<int> counter{0};
+    dir_ = fs::temp_directory_path() /
+           ("pierce_csg_cli_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  void write(const std::string& name, const std::string& text) const { std::ofstream(path(name)) << text; }
+
+  static std::string read(const std::string& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+
+  // Runs `pierce ARGS` in the temporary directory.
+  Outcome pierce(const std::string& args) const {
+    const std::string out = path("stdout.txt"), err = path("stderr.txt");
+    const std::string cmd = "cd '" + dir_.string() + "' && '" PIERCE_EXE "' " + args + " > '" + out + "' 2> '" + err + "'";
+    const int status = std::system(cmd.c_str());
+    Outcome r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = read(out);
+    r.err = read(err);
+    return r;
+  }
+
+  fs::path dir_;
+};
+
+std::string boxes_obj() {
+  return gen::to_obj({gen::box({0, 0, 0}, {1, 1, 1}, "a"), gen::box({0.75, 0, 0}, {1.75, 1, 1}, "b"),
+                      gen::box({3, 0, 0}, {4, 1, 1}, "c")});
+}
+
+TEST_F(CsgCli, GqaJsonHasSolidsWithVolumeCentroidAndOverlaps) {
+  write("boxes.obj", boxes_obj());
+  const Outcome r = pierce("gqa boxes.obj --start-n 16 --json gqa.json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("OVERLAP a <-> b"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("converged"), std::string::npos);
+  const auto j = nlohmann::json::parse(read(path("gqa.json")));
+  ASSERT_EQ(j["solids"].size(), 3u);
+  const auto& a = j["solids"][0];
+  EXPECT_EQ(a["name"], "a");
+  EXPECT_NEAR(a["volume"].get<double>(), 1.0, 1e-5);
+  EXPECT_NEAR(a["centroid"][0].get<double>(), 0.5, 1e-5);
+  ASSERT_EQ(a["overlaps"].size(), 1u);
+  const auto& ov = a["overlaps"][0];
+  EXPECT_EQ(ov["a"], "a");
+  EXPECT_EQ(ov["b"], "b");
+  EXPECT_GT(ov["count"].get<int>(), 0);
+  EXPECT_NEAR(ov["max_depth"].get<double>(), 1.0, 1e-5);
+  EXPECT_EQ(ov["at"].size(), 3u);
+  EXPECT_TRUE(j["solids"][2]["overlaps"].empty());
+  EXPECT_EQ(j["converged"], true);
+  ASSERT_EQ(j["gaps"].size(), 1u);
+
+  // No clobbering without --force; the file stays as it was.
+  const std::string before = read(path("gqa.json"));
+  const Outcome again = pierce("gqa boxes.obj --json gqa.json");
+  EXPECT_EQ(again.code, 2);
+  EXPECT_NE(again.err.find("gqa.json"), std::string::npos) << again.err;
+  EXPECT_EQ(read(path("gqa.json")), before);
+  EXPECT_EQ(pierce("gqa boxes.obj --json gqa.json --force --tol 0.01").code, 0);
+}
+
+TEST_F(CsgCli, GqaRegionsAndBadExpressions) {
+  write("boxes.obj", boxes_obj());
+  const Outcome r = pierce("gqa boxes.obj --start-n 16 --csg 'union(a, b)' --json g.json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(read(path("g.json")));
+  ASSERT_EQ(j["regions"].size(), 1u);
+  EXPECT_NEAR(j["regions"][0]["volume"].get<double>(), 1.75, 1e-5);
+  const Outcome bad = pierce("gqa boxes.obj --csg 'union(a, wing)'");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("unknown solid name 'wing'"), std::string::npos) << bad.err;
+}
+
+TEST_F(CsgCli, ShotTableCsvAndJson) {
+  write("boxes.obj", boxes_obj());
+  const Outcome table = pierce("shot boxes.obj --from -1,0.5,0.5 --dir 1,0,0");
+  ASSERT_EQ(table.code, 0) << table.err;
+  EXPECT_NE(table.out.find("overlap  a+b"), std::string::npos) << table.out;
+  EXPECT_NE(table.out.find("gap      b | c"), std::string::npos) << table.out;
+
+  const Outcome csv = pierce("shot boxes.obj --from -1,0.5,0.5 --dir 1,0,0 --format csv -o shot.csv");
+  ASSERT_EQ(csv.code, 0) << csv.err;
+  std::istringstream lines(read(path("shot.csv")));
+  std::string line;
+  std::vector<std::string> rows;
+  while (std::getline(lines, line)) rows.push_back(line);
+  ASSERT_EQ(rows.size(), 6u);  // header, a, a+b, b, gap, c
+  EXPECT_EQ(rows[0].rfind("ray,kind,solids,in_x", 0), 0u);
+  EXPECT_EQ(rows[4].rfind("0,gap,b+c,1.75,0.5,0.5,3,0.5,0.5,1.25,,,,", 0), 0u) << rows[4];
+
+  const Outcome json = pierce("shot boxes.obj --grid axis=x,n=2 --csg 'difference(a, b)' --format json");
+  ASSERT_EQ(json.code, 0) << json.err;
+  const auto j = nlohmann::json::parse(json.out);
+  ASSERT_EQ(j["rays"].size(), 4u);
+  EXPECT_EQ(j["rays"][0]["rows"][0]["kind"], "region");
+  EXPECT_NEAR(j["rays"][0]["rows"][0]["los"].get<double>(), 0.75, 1e-6);
+}
+
+TEST_F(CsgCli, ShotRejectsBadArguments) {
+  write("boxes.obj", boxes_obj());
+  const Outcome a = pierce("shot boxes.obj --from 1,2 --dir 1,0,0");
+  EXPECT_EQ(a.code, 2);
+  EXPECT_NE(a.err.find("--from '1,2'"), std::string::npos) << a.err;
+  const Outcome b = pierce("shot boxes.obj --from 0,0,0 --dir 1,0,0 --grid axis=z,n=2");
+  EXPECT_EQ(b.code, 2);
+  EXPECT_NE(b.err.find("exactly one of"), std::string::npos) << b.err;
+  const Outcome c = pierce("shot boxes.obj --from 0,0,0 --dir 1,0,0 --csg 'union(a,'");
+  EXPECT_EQ(c.code, 2);
+  EXPECT_NE(c.err.find("column 9"), std::string::npos) << c.err;
+  const Outcome d = pierce("shot boxes.obj --from 0,0,0 --dir 0,0,0");
+  EXPECT_EQ(d.code, 2);
+}
+
+TEST_F(CsgCli, RunXraySceneWritesImagesAndReportsSavedWork) {
+  write("stack.obj", gen::to_obj(gen::stacked_plates(20, 1.0, 0.1)));
+  write("xray.json", R"js({
+    "models": ["stack.obj"],
+    "materials": {"lead": {"mu": 5, "density": 11.3}},
+    "solids": {"*": "lead"},
+    "rays": "grid:axis=z,n=8",
+    "effects": {"xray": {"threshold": 0.001, "image": "out/xray.png", "vti": "out/xray.vti"}},
+    "output": {"rays": "out/rays.csv", "report": "out/report.json"}
+  })js");
+  const Outcome r = pierce("run xray.json --audit");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("hits traversed: 1920 of 2560 existing"), std::string::npos) << r.out;
+  const auto rep = nlohmann::json::parse(read(path("out/report.json")));
+  EXPECT_EQ(rep["hits_traversed"], 1920);
+  EXPECT_EQ(rep["hits_existing"], 2560);
+  EXPECT_EQ(rep["work"]["effect_updates"]["classification"], 0);
+  EXPECT_EQ(rep["xray"]["rays_below_threshold"], 64);
+  EXPECT_EQ(read(path("out/xray.png")).substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  EXPECT_NE(read(path("out/xray.vti")).find("WholeExtent=\"0 7 0 7 0 0\""), std::string::npos);
+  // Outputs exist now: a second run refuses to overwrite them.
+  const Outcome again = pierce("run xray.json");
+  EXPECT_EQ(again.code, 2);
+  EXPECT_NE(again.err.find("not overwriting"), std::string::npos) << again.err;
+  EXPECT_EQ(pierce("run xray.json --out-dir elsewhere").code, 0);
+  EXPECT_TRUE(fs::exists(path("elsewhere/out/xray.png")));
+}
+
+TEST_F(CsgCli, RunThicknessOnlySceneBuildsNoPartitions) {
+  write("stack.obj", gen::to_obj(gen::stacked_plates(20, 1.0, 0.1)));
+  write("thick.json", R"js({"models": "stack.obj", "rays": "grid:axis=z,n=4", "effects": ["thickness"],
+                            "output": {"rays": "rays.csv"}})js");
+  const Outcome r = pierce("run thick.json --audit --report rep.json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto rep = nlohmann::json::parse(read(path("rep.json")));
+  EXPECT_EQ(rep["work"]["partition_groups"], 0);
+  EXPECT_EQ(rep["work"]["partitions_consumed"], 0);
+  EXPECT_EQ(rep["hits_traversed"], 32);  // two per ray
+  EXPECT_EQ(rep["hits_existing"], 640);
+  EXPECT_NE(read(path("rays.csv")).find("thickness_solid,thickness_los,thickness_normal"), std::string::npos);
+}
+
+TEST_F(CsgCli, RunReportsSceneErrorsWithFileAndKey) {
+  write("stack.obj", gen::to_obj(gen::stacked_plates(2, 1.0, 0.1)));
+  write("bad.json", R"js({"models": "stack.obj", "rays": "random:n=4", "effects": {"xray": {"image": "x.png"}},
+                          "materials": {"lead": {"mu": 1}}, "solids": {"*": "lead"}})js");
+  const Outcome r = pierce("run bad.json");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("images need rays that form one"), std::string::npos) << r.err;
+  write("typo.json", R"js({"models": "stack.obj", "rays": "grid", "effects": {"xray": {"treshold": 0.1}}})js");
+  const Outcome t = pierce("run typo.json");
+  EXPECT_EQ(t.code, 2);
+  EXPECT_NE(t.err.find("typo.json: effects.xray: unknown key 'treshold'"), std::string::npos) << t.err;
+  const Outcome m = pierce("run missing.json");
+  EXPECT_EQ(m.code, 2);
+  EXPECT_NE(m.err.find("missing.json: cannot open"), std::string::npos) << m.err;
+}
+
+}  // namespace
+}  // namespace pierce
