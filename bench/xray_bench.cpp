@@ -48,6 +48,13 @@ std::string cpu_model() {
   return "unknown";
 }
 
+std::string load_average() {
+  std::ifstream in("/proc/loadavg");
+  std::string a, b, c;
+  if (in >> a >> b >> c) return a + " " + b + " " + c;
+  return "unknown";
+}
+
 std::vector<Ray> grid_rays(int n) {
   std::vector<Ray> rays;
   rays.reserve(std::size_t(n) * std::size_t(n));
@@ -95,8 +102,8 @@ int main(int argc, char** argv) {
                                 KernelKind::nodecull, KernelKind::embree_filter, KernelKind::embree_restart};
   const std::vector<Ray> rays = grid_rays(n);
   std::vector<Row> rows;
-  std::printf("pierce_bench_xray: %d x %d rays, %d threads, median of %d, %s\n", n, n, threads, reps,
-              cpu_model().c_str());
+  std::printf("pierce_bench_xray: %d x %d rays, %d threads, median of %d, %s, load average %s\n", n, n, threads,
+              reps, cpu_model().c_str(), load_average().c_str());
   std::printf("%-26s %-16s %9s %9s %14s %14s %7s %12s\n", "scene", "kernel", "time(s)", "Mrays/s", "hits traversed",
               "hits existing", "saved", "rays settled");
   for (const Case& c : cases) {
@@ -141,6 +148,7 @@ int main(int argc, char** argv) {
     j["threads"] = threads;
     j["reps"] = reps;
     j["cpu"] = cpu_model();
+    j["load_average_at_end"] = load_average();
     auto& out = j["results"] = nlohmann::ordered_json::array();
     for (const Row& r : rows)
       out.push_back({{"scene", r.scene},

@@ -110,12 +110,7 @@ TEST(CsgEvaluate, TouchingBoxesUnionIsOneSeamlessInterval) {
   EXPECT_DOUBLE_EQ(d[0].t_out, 7.0);
 }
 
-// Rotation about the axis (1, 2, 3) by 0.7 rad: no face stays axis-aligned.
-Vec3d rotated(Vec3d p) {
-  const Vec3d k = Vec3d{1, 2, 3} * (1.0 / std::sqrt(14.0));
-  const double c = std::cos(0.7), s = std::sin(0.7);
-  return p * c + cross(k, p) * s + k * (dot(k, p) * (1 - c));
-}
+using csgtest::rotated;
 
 TEST(CsgEvaluate, SnappingRemovesFloatSliversBetweenCubesWithDifferentDiagonals) {
   // cube_grid alternates the faces' diagonals; rotated, a shared face is crossed at two t values

@@ -12,7 +12,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "csg_test_scenes.h"
+#include "pierce/analysis/effect_scene.h"
 #include "pierce/generators.h"
+#include "png_decode.h"
 
 namespace pierce {
 namespace {
@@ -161,6 +164,7 @@ TEST_F(CsgCli, RunXraySceneWritesImagesAndReportsSavedWork) {
   })js");
   const Outcome r = pierce("run xray.json --audit");
   ASSERT_EQ(r.code, 0) << r.err;
+  // exp(-0.5 k) < 1e-3 first after k = 14 plates: 30 of the 40 hits of each of the 64 rays.
   EXPECT_NE(r.out.find("hits traversed: 1920 of 2560 existing"), std::string::npos) << r.out;
   const auto rep = nlohmann::json::parse(read(path("out/report.json")));
   EXPECT_EQ(rep["hits_traversed"], 1920);
@@ -175,6 +179,57 @@ TEST_F(CsgCli, RunXraySceneWritesImagesAndReportsSavedWork) {
   EXPECT_NE(again.err.find("not overwriting"), std::string::npos) << again.err;
   EXPECT_EQ(pierce("run xray.json --out-dir elsewhere").code, 0);
   EXPECT_TRUE(fs::exists(path("elsewhere/out/xray.png")));
+}
+
+TEST_F(CsgCli, RunXrayImageMatchesBeerLambertPixelByPixel) {
+  // Alternating lead (mu 5) and foam (mu 0.5) plates under an oblique camera: pixels see different
+  // path lengths, some rays leave through the sides, some miss, some fall below the threshold.
+  write("stack.obj", gen::to_obj(gen::stacked_plates(20, 1.0, 0.1)));
+  std::string solids;
+  for (int i = 0; i < 20; ++i) {
+    if (i) solids += ", ";
+    solids.append("\"plate").append(std::to_string(i)).append(i % 2 ? "\": \"foam\"" : "\": \"lead\"");
+  }
+  write("cam.json", R"js({"models": "stack.obj",
+    "materials": {"lead": {"mu": 5}, "foam": {"mu": 0.5}},
+    "solids": {)js" + solids + R"js(},
+    "rays": {"camera": {"center": [0.5, 0.5, -1], "direction": [0.35, 0.15, 1], "up": [0, 1, 0],
+                        "size": [1.6, 1.6], "pixels": [24, 20]}},
+    "effects": {"xray": {"threshold": 0.02, "image": "x.png"}}})js");
+  const Outcome r = pierce("run cam.json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const csgtest::DecodedPng png = csgtest::decode_png(read(path("x.png")));
+  ASSERT_EQ(png.error, "");
+  ASSERT_EQ(png.width, 24u);
+  ASSERT_EQ(png.height, 20u);
+  EXPECT_EQ(png.bits, 16);
+  analysis::CameraSpec cam;
+  cam.center = {0.5, 0.5, -1};
+  cam.direction = {0.35, 0.15, 1};
+  cam.up = {0, 1, 0};
+  cam.width = cam.height = 1.6;
+  cam.pixels_x = 24;
+  cam.pixels_y = 20;
+  const std::vector<Ray> rays = analysis::camera_rays(cam);
+  const double q = 1.0 / 65535;  // 16-bit quantisation
+  int below = 0, above = 0, dark = 0;
+  for (std::uint32_t y = 0; y < 20; ++y)
+    for (std::uint32_t x = 0; x < 24; ++x) {
+      const double exact = csgtest::plate_stack_transmission(rays[y * 24 + x], 20, 0.1, 5.0, 0.5);
+      const double pixel = png.sample(x, y);
+      if (exact >= 0.02 * 1.0001) {
+        EXPECT_NEAR(pixel, exact, 2e-5 * exact + q) << x << "," << y;
+        ++above;
+        dark += exact < 0.5;
+      } else if (exact < 0.02 * 0.9999) {
+        EXPECT_LE(pixel, 0.02 + q) << x << "," << y;
+        EXPECT_GE(pixel, exact - q) << x << "," << y;
+        ++below;
+      }
+    }
+  EXPECT_GT(below, 20);
+  EXPECT_GT(dark, 20);
+  EXPECT_GT(above - dark, 20);  // rays that miss or graze
 }
 
 TEST_F(CsgCli, RunThicknessOnlySceneBuildsNoPartitions) {

@@ -40,28 +40,8 @@ std::vector<Ray> rays_along_z(int n) {
   return rays;
 }
 
-// Length of the ray segment [tmin, tmax] inside the box (slab clipping), times |dir|.
-double chord(const Ray& r, Vec3d lo, Vec3d hi) {
-  double t0 = r.tmin, t1 = r.tmax;
-  for (std::size_t a = 0; a < 3; ++a) {
-    if (r.dir[a] == 0) {
-      if (r.org[a] < lo[a] || r.org[a] > hi[a]) return 0;
-      continue;
-    }
-    double ta = (lo[a] - r.org[a]) / r.dir[a], tb = (hi[a] - r.org[a]) / r.dir[a];
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-  }
-  return t1 > t0 ? (t1 - t0) * length(r.dir) : 0.0;
-}
-
-// Beer-Lambert on the plate stack, analytically.
 double analytic_transmission(const Ray& r) {
-  double tau = 0;
-  for (int i = 0; i < kPlates; ++i)
-    tau += (i % 2 ? kMuFoam : kMuLead) * chord(r, {0, 0, i * kPlateT}, {1, 1, (i + 1) * kPlateT});
-  return std::exp(-tau);
+  return csgtest::plate_stack_transmission(r, kPlates, kPlateT, kMuLead, kMuFoam);
 }
 
 TEST(Effects, XrayOnPlateStackMatchesBeerLambertAndStopsEarly) {

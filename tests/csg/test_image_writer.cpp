@@ -5,58 +5,22 @@
 #include <cmath>
 #include <cstdint>
 
+#include "png_decode.h"
 #include "pierce/io/image_writer.h"
 
 namespace pierce {
 namespace {
 
-std::uint32_t be32(const std::string& s, std::size_t at) {
-  return (std::uint32_t(std::uint8_t(s[at])) << 24) | (std::uint32_t(std::uint8_t(s[at + 1])) << 16) |
-         (std::uint32_t(std::uint8_t(s[at + 2])) << 8) | std::uint32_t(std::uint8_t(s[at + 3]));
-}
+using csgtest::decode_png;
+using csgtest::DecodedPng;
 
 std::span<const std::uint8_t> bytes(const std::string& s, std::size_t from, std::size_t n) {
-  return {reinterpret_cast<const std::uint8_t*>(s.data()) + from, n};
+  return csgtest::png_bytes(s, from, n);
 }
 
-struct Decoded {
-  std::uint32_t width = 0, height = 0;
-  int bits = 0, colour_type = 0;
-  std::string raw;  // inflated scanlines
-};
-
-// Decodes what encode_png writes (stored blocks only), checking every checksum.
-Decoded decode(const std::string& png) {
-  Decoded d;
-  EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
-  std::string idat;
-  for (std::size_t pos = 8; pos < png.size();) {
-    const std::uint32_t len = be32(png, pos);
-    const std::string type = png.substr(pos + 4, 4);
-    EXPECT_EQ(crc32(bytes(png, pos + 4, 4 + len)), be32(png, pos + 8 + len)) << type;
-    if (type == "IHDR") {
-      d.width = be32(png, pos + 8);
-      d.height = be32(png, pos + 12);
-      d.bits = std::uint8_t(png[pos + 16]);
-      d.colour_type = std::uint8_t(png[pos + 17]);
-    } else if (type == "IDAT") {
-      idat += png.substr(pos + 8, len);
-    }
-    pos += 12 + len;
-  }
-  EXPECT_EQ(std::uint8_t(idat[0]), 0x78);
-  EXPECT_EQ((std::uint8_t(idat[0]) * 256 + std::uint8_t(idat[1])) % 31, 0);  // zlib header check
-  std::size_t p = 2;
-  for (bool last = false; !last;) {
-    last = idat[p] & 1;
-    EXPECT_EQ((idat[p] >> 1) & 3, 0);  // stored
-    const std::size_t len = std::uint8_t(idat[p + 1]) | (std::size_t(std::uint8_t(idat[p + 2])) << 8);
-    const std::size_t nlen = std::uint8_t(idat[p + 3]) | (std::size_t(std::uint8_t(idat[p + 4])) << 8);
-    EXPECT_EQ(len ^ 0xffff, nlen);
-    d.raw += idat.substr(p + 5, len);
-    p += 5 + len;
-  }
-  EXPECT_EQ(adler32(bytes(d.raw, 0, d.raw.size())), be32(idat, p));
+DecodedPng decode(const std::string& png) {
+  DecodedPng d = decode_png(png);
+  EXPECT_EQ(d.error, "");
   return d;
 }
 
@@ -74,7 +38,7 @@ TEST(ImageWriter, Grey16RoundTrips) {
   v[5] = -1;
   v[6] = 7;
   v[7] = std::nan("");
-  const Decoded d = decode(encode_png(w, h, 1, 16, v));
+  const DecodedPng d = decode(encode_png(w, h, 1, 16, v));
   EXPECT_EQ(d.width, std::uint32_t(w));
   EXPECT_EQ(d.height, std::uint32_t(h));
   EXPECT_EQ(d.bits, 16);
@@ -94,9 +58,12 @@ TEST(ImageWriter, Grey16RoundTrips) {
 
 TEST(ImageWriter, Rgba8HasColourType6) {
   const std::vector<double> v = {1, 0, 0, 1, 0, 1, 0, 0.5};
-  const Decoded d = decode(encode_png(2, 1, 4, 8, v));
+  const DecodedPng d = decode(encode_png(2, 1, 4, 8, v));
   EXPECT_EQ(d.colour_type, 6);
   EXPECT_EQ(d.raw, std::string("\0\xff\0\0\xff\0\xff\0\x80", 9));
+  std::string corrupt = encode_png(2, 1, 4, 8, v);
+  corrupt[corrupt.size() / 2] ^= 0x10;  // the decoder's checks do catch damage
+  EXPECT_NE(decode_png(corrupt).error, "");
   EXPECT_THROW(encode_png(2, 2, 4, 8, v), std::invalid_argument);
   EXPECT_THROW(encode_png(2, 1, 2, 8, v), std::invalid_argument);
 }

@@ -153,7 +153,6 @@ class RayWalk {
   std::array<double, kEffectCount> secs_{};
 
   // Effect state.
-  bool first_done_ = false;
   double first_t_ = kNaN, first_obl_ = kNaN;
   std::uint32_t first_geom_ = kInvalidId;
   std::uint32_t thick_geom_ = kInvalidId;
@@ -202,8 +201,11 @@ void RayWalk::on_hit(const Hit& h) {
     watch_.run(secs_[idx(Effect::transparency)], [&] {
       ++w_.stats.updates[idx(Effect::transparency)];
       const double a = props_.opacity[h.geom];
-      const double shade = std::cos(obliquity_deg(ray_.dir, h) * kDegToRad);
-      const double weight = (1 - alpha_) * a * (std::isnan(shade) ? 1.0 : shade);
+      // |cos obliquity| without the angle: the surface's brightness under a head-on light.
+      const Vec3d n(h.ng);
+      const double nn = length(n) * dir_len_;
+      const double shade = nn > 0 ? std::abs(dot(n, ray_.dir)) / nn : 1.0;
+      const double weight = (1 - alpha_) * a * shade;
       color_ = color_ + props_.color[h.geom] * weight;
       alpha_ += (1 - alpha_) * a;
       if (alpha_ >= cfg_.alpha_saturation) settle(Effect::transparency);
