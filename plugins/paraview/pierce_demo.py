@@ -81,12 +81,15 @@ def main(argv):
     classify.IncludeGaps = 1
 
     out = lambda name: os.path.join(args.out, name)  # noqa: E731
-    SaveData(out("thickness.vtm"), proxy=OutputPort(thickness, 0))
+    # Inline base64 arrays: files with appended data (ParaView's default) cannot be read back by
+    # Debian 12's ParaView since its expat security update ("not well-formed (invalid token)").
+    xml = dict(DataMode="Binary")
     csv = dict(Precision=17, UseScientificNotation=1)  # full double precision
+    SaveData(out("thickness.vtm"), proxy=OutputPort(thickness, 0), **xml)
     SaveData(out("thickness_stats.csv"), proxy=OutputPort(thickness, 1), **csv)
-    SaveData(out("overlaps.vtm"), proxy=OutputPort(overlaps, 0))
+    SaveData(out("overlaps.vtm"), proxy=OutputPort(overlaps, 0), **xml)
     SaveData(out("overlap_pairs.csv"), proxy=OutputPort(overlaps, 1), **csv)
-    SaveData(out("partitions.vtp"), proxy=OutputPort(classify, 0))
+    SaveData(out("partitions.vtp"), proxy=OutputPort(classify, 0), **xml)
     SaveData(out("partitions.csv"), proxy=OutputPort(classify, 1), **csv)
 
     stats = servermanager.Fetch(thickness, None, None, 1)

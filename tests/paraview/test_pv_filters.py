@@ -9,7 +9,7 @@ check each filter's arrays against the assembly's known geometry (tests/vtk/step
 import argparse
 import sys
 
-from paraview.simple import LoadPlugin, Line, OpenDataFile, UpdatePipeline
+from paraview.simple import LoadPlugin, Line, OpenDataFile, Plane, UpdatePipeline
 from paraview import servermanager
 
 FAILURES = []
@@ -112,6 +112,20 @@ def main():
     check(len(t_in) == 2 and t_out[0] == t_in[1], "plate and block adjacent: %s %s" % (t_in, t_out))
     table = servermanager.Fetch(classify, None, None, 1)
     check(column(table, "Names") == ["plate_assy/plate", "plate_assy/block"], "partition names")
+
+    # Array selection: a plane's Normals as ray directions (the plane faces -z, above the plate).
+    plane = Plane(Origin=[0.5, 0.5, 8], Point1=[0.5, 9.5, 8], Point2=[9.5, 0.5, 8], XResolution=3, YResolution=3)
+    UpdatePipeline(proxy=plane)  # as in the GUI: the domain lists the arrays of an updated input
+    classify.Rays = plane
+    classify.UseDirectionArray = 1
+    available = list(classify.GetProperty("DirectionArrayName").Available)
+    check("Normals" in available, "direction array choices %s" % available)
+    classify.DirectionArray = "Normals"
+    segments = servermanager.Fetch(classify)
+    # Along the default +z nothing lies above z = 8: every one of the 16 rays hitting the plate
+    # proves the Normals were used.
+    rays = set(cell_values(segments, "RayId"))
+    check(len(rays) == 16, "rays along the plane's normals that hit: %d" % len(rays))
 
     if FAILURES:
         print("%d check(s) failed" % len(FAILURES))
