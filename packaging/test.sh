@@ -5,3 +5,12 @@ cd "$(dirname "$0")/.."
 bash packaging/install-deps.sh
 bash packaging/build.sh
 ctest --test-dir build --output-on-failure -j "$(nproc)" --timeout 900
+
+# The same suite under ASan + UBSan (CMakePresets.json preset `asan`, build-asan/; any report
+# fails the test). Tests that run inside Python/FreeCAD interpreters are left to the run above:
+# those programs cannot load sanitized libraries. PIERCE_SKIP_ASAN=1 skips this step.
+if [ "${PIERCE_SKIP_ASAN:-0}" != 1 ]; then
+  cmake --preset asan
+  cmake --build --preset asan -j "$(nproc)"
+  ctest --preset asan -j "$(nproc)" -LE 'python|freecad|gui'
+fi

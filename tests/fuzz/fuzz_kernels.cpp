@@ -26,9 +26,23 @@ namespace {
 
 using namespace pierce;
 
+const Scene* g_scene = nullptr;  // for the failure report
+
 [[noreturn]] void fail(const std::string& what, const Ray& r) {
   std::fprintf(stderr, "fuzz_kernels: %s\n  ray org (%a, %a, %a) dir (%a, %a, %a) t [%a, %a]\n", what.c_str(), r.org.x,
                r.org.y, r.org.z, r.dir.x, r.dir.y, r.dir.z, r.tmin, r.tmax);
+  if (g_scene)
+    for (std::uint32_t g = 0; g < g_scene->geometries().size(); ++g) {
+      const Geometry& geo = g_scene->geometry(g);
+      for (std::uint32_t p = 0; p < geo.triangles.size(); ++p) {
+        std::fprintf(stderr, "  geom %u prim %u%s:", g, p, geo.degenerate[p] ? " (degenerate)" : "");
+        for (auto i : geo.triangles[p]) {
+          const Vec3d& v = geo.vertices[i];
+          std::fprintf(stderr, " (%a, %a, %a)", v.x, v.y, v.z);
+        }
+        std::fprintf(stderr, "\n");
+      }
+    }
   std::abort();
 }
 
@@ -123,6 +137,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
 
   const Accel accel(scene);
+  g_scene = &scene;
   std::vector<KernelKind> floats, doubles;
   for (KernelKind k : kAllKernels)
     if (is_exact(k)) floats.push_back(k);

@@ -12,8 +12,7 @@ Vec3d axis_dir(int axis, double sign) {
   return d;
 }
 
-// Point with `w` on `axis` and (p, q) on the two other axes, in the order the kernels' shear
-// does not care about (any order works for counting).
+// Point with `w` on `axis` and (p, q) on the next two axes.
 Vec3d point(int axis, double w, double p, double q) {
   Vec3d v;
   v[std::size_t(axis)] = w;

@@ -154,19 +154,24 @@ TEST(Resume, BatchEqualsSerialAndIsDeterministic) {
 }
 
 TEST(Resume, BatchCancel) {
-  const Fixture f = make_fixture(2000);
+  // Many cheap rays: far more TBB chunks than any machine has cores, so cancelling on the first
+  // progress report must leave rays untraced.
+  const auto w = make_world(gen::stacked_plates(2));
+  std::vector<Ray> rays;
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> U(0.05, 0.95);
+  for (int i = 0; i < 100000; ++i) rays.push_back({{U(rng), U(rng), -1.0}, {0, 0, 1}});
   std::vector<std::vector<Hit>> out;
-  EXPECT_FALSE(trace_batch(f.world->accel, KernelKind::filter, f.rays, 0, out, {}, [](std::size_t) { return false; }));
-  ASSERT_EQ(out.size(), f.rays.size());
+  EXPECT_FALSE(trace_batch(w->accel, KernelKind::filter, rays, 0, out, {}, [](std::size_t) { return false; }));
+  ASSERT_EQ(out.size(), rays.size());
   std::size_t traced = 0;
   for (std::size_t i = 0; i < out.size(); ++i)
     if (!out[i].empty()) {
       ++traced;
-      EXPECT_TRUE(same_hits(f.want[i], out[i])) << "ray " << i;  // what was traced is complete
+      ASSERT_TRUE(same_hits(reference_hits(w->scene, rays[i], {}), out[i])) << "ray " << i;  // complete
     }
-  std::size_t nonempty = 0;
-  for (const auto& w : f.want) nonempty += !w.empty();
-  EXPECT_LT(traced, nonempty) << "cancel must stop the batch early";
+  EXPECT_GT(traced, 0u);
+  EXPECT_LT(traced, rays.size()) << "cancel must stop the batch early";
 }
 
 }  // namespace

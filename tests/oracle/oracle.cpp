@@ -163,7 +163,9 @@ OracleResult Oracle<T>::trace(const Ray& ray, HitOrder order) const {
     }
     const bool hit = edges_pass && in_range;
     if (edges_pass != view_pass) {
-      res.outside.push_back({t.geom, t.prim, hit, true, view_pass && in_range});
+      // The kernel's answer is known unless its t, computed on the rounded geometry, may fall
+      // on either side of tmin/tmax.
+      res.outside.push_back({t.geom, t.prim, hit, !(view_pass && near_t), view_pass && in_range});
     } else if (edges_pass && near_t) {
       res.outside.push_back({t.geom, t.prim, hit, false, false});
     }

@@ -49,6 +49,10 @@ inline int diff_of_products_sign(double a, double b, double c, double d) {
 // coordinates (the differences themselves would round), each split into its rounded value and
 // its exact error.
 inline int orient2d_sign(double ax, double ay, double bx, double by, double cx, double cy) {
+  // Fast path with Shewchuk's error bound for the rounded evaluation (ccwerrboundA).
+  const double left = (ax - cx) * (by - cy), right = (ay - cy) * (bx - cx), det = left - right;
+  const double bound = (3.0 + 16.0 * 0x1p-53) * 0x1p-53 * (std::abs(left) + std::abs(right));
+  if (det > bound || -det > bound) return det > 0.0 ? 1 : -1;
   const double p[6][2] = {{bx, cy}, {ax, by}, {cx, ay}, {by, cx}, {ay, bx}, {cy, ax}};  // + + + - - -
   double x[12];
   for (int i = 0; i < 6; ++i) {
