@@ -126,7 +126,8 @@ Cell time_cell(std::size_t max_hits, std::size_t ray_count, int reps, Pass&& pas
   }
   const Counters after = counter_sum();
   c.counters = {after.node_tests - before.node_tests, after.traversal_steps - before.traversal_steps,
-                after.prim_tests - before.prim_tests, after.valid_hits - before.valid_hits};
+                after.prim_tests - before.prim_tests, after.valid_hits - before.valid_hits,
+                after.leaf_visits - before.leaf_visits};
   std::vector<double> s = c.seconds;
   std::sort(s.begin(), s.end());
   c.median_seconds = s[s.size() / 2];

@@ -27,6 +27,7 @@ struct GqaCli {
   ModelArgs model;
   double tol = 1e-3;
   int start_n = 0, max_n = 1024;
+  std::uint64_t seed = 1;
   double gap_min = 0, gap_max = std::numeric_limits<double>::infinity();
   std::vector<std::string> csg;
   std::string kernel = "queue";
@@ -91,7 +92,8 @@ nlohmann::ordered_json quantities_json(const GqaQuantities& q) {
           {"centroid", vec(q.centroid)},
           {"axis_volume", q.axis_volume},
           {"crossings", q.crossings},
-          {"change", std::isfinite(q.change) ? nlohmann::ordered_json(q.change) : nlohmann::ordered_json()}};
+          {"change", std::isfinite(q.change) ? nlohmann::ordered_json(q.change) : nlohmann::ordered_json()},
+          {"std_error", q.std_error}};
 }
 
 void write_json(std::FILE* f, const Scene& s, const GqaResult& r) {
@@ -99,6 +101,7 @@ void write_json(std::FILE* f, const Scene& s, const GqaResult& r) {
   j["tolerance"] = r.tolerance;
   j["converged"] = r.converged;
   j["grid_n"] = r.n;
+  j["seed"] = r.seed;
   auto& passes = j["passes"] = nlohmann::ordered_json::array();
   for (const GqaPass& p : r.passes)
     passes.push_back({{"n", p.n},
@@ -177,6 +180,7 @@ int run_gqa_cmd(const GqaCli& o) {
   go.tolerance = o.tol;
   go.start_n = o.start_n;
   go.max_n = o.max_n;
+  go.seed = o.seed;
   go.kernel = *kernel;
   go.gap_min = o.gap_min;
   go.gap_max = o.gap_max;
@@ -213,12 +217,14 @@ std::function<int()> register_gqa(CLI::App& app) {
   add_model_args(cmd, o->model, true);
   cmd->add_option("--tol", o->tol,
                   "Relative tolerance: refine until volumes change by at most this between passes, the three axes "
-                  "agree and centroids move by at most tol x scene diagonal")
+                  "agree, 3 estimated standard errors fit in it and centroids move by at most tol x scene diagonal")
       ->capture_default_str();
   cmd->add_option("--start-n", o->start_n, "First grid size per axis (0 = from the thinnest solid)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--max-n", o->max_n, "Largest grid size per axis")->check(CLI::Range(1, 32768))->capture_default_str();
+  cmd->add_option("--seed", o->seed, "Seed of the rays' random positions within their grid cells (same seed, same result)")
+      ->capture_default_str();
   cmd->add_option("--csg", o->csg, "Also measure this CSG expression (repeatable; docs/CSG.md)");
   cmd->add_option("--gap-min", o->gap_min, "Report only gaps longer than this (model units)")
       ->check(CLI::NonNegativeNumber);

@@ -12,9 +12,9 @@
 #include "hit_diff.h"
 #include "hits_csv.h"
 #include "interrupt.h"
+#include "model_args.h"
 #include "output_file.h"
 #include "pierce/error.h"
-#include "pierce/io/mesh_io.h"
 #include "pierce/io/ray_source.h"
 #include "pierce/kernel.h"
 #include "progress.h"
@@ -24,7 +24,7 @@ namespace pierce::cli {
 namespace {
 
 struct HitsOptions {
-  std::vector<std::string> models;
+  ModelArgs model;
   std::string rays;
   std::string kernel;
   std::size_t max_hits = 0;
@@ -119,7 +119,13 @@ void print_table(const std::vector<Row>& rows, std::size_t ray_count) {
 // compared as soon as they finish.
 int run_all(const Accel& accel, const std::vector<Ray>& rays, const HitsOptions& o) {
   std::vector<KernelKind> exact, inexact;
-  for (KernelKind k : kAllKernels) (is_exact(k) ? exact : inexact).push_back(k);
+  for (KernelKind k : kAllKernels) {
+    if (const std::string why = unsupported_reason(accel, k); !why.empty()) {
+      std::fprintf(stderr, "pierce hits: skipping %s\n", why.c_str());
+      continue;
+    }
+    (is_exact(k) ? exact : inexact).push_back(k);
+  }
   const std::size_t n = rays.size();
   std::vector<Row> rows;
   Results reference;
@@ -215,7 +221,7 @@ int run_hits(const HitsOptions& o) {
   OutputFile::check_target(o.out, o.force);  // before any long work
 
   Scene scene;
-  add_model_files(scene, o.models);
+  load_models(scene, o.model);
   if (interrupted()) return cancelled();
   const std::vector<Ray> rays = load_rays(o.rays, scene);
   if (interrupted()) return cancelled();
@@ -233,9 +239,8 @@ int run_hits(const HitsOptions& o) {
 std::function<int()> register_hits(CLI::App& app) {
   auto opts = std::make_shared<HitsOptions>();
   CLI::App* cmd = app.add_subcommand("hits", "Every surface each ray crosses, in order (CSV: ray,t,geom,prim,u,v,enter)");
-  cmd->add_option("models", opts->models,
-                  "Model files (STL, OBJ, OFF, PLY); geometry ids follow argument order, one per OBJ o/g group")
-      ->required();
+  // Geometry ids follow argument order: one per OBJ o/g group, one per CAD solid.
+  add_model_args(cmd, opts->model, true);
   cmd->add_option("--rays", opts->rays,
                   "CSV file ox,oy,oz,dx,dy,dz[,tmin,tmax], or grid:axis=x|y|z,n=N[,dir=-], or random:n=N[,seed=S]")
       ->required();

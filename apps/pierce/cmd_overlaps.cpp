@@ -1,6 +1,7 @@
 // `pierce overlaps MODEL`: coplanar overlapping faces (exact and within --tol), Gribble et al.'s
 // coplanar-hit statistic, and solid-solid interference along rays, per solid pair; per-triangle
 // heat-map arrays in VTP.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -16,6 +17,7 @@
 #include "output_file.h"
 #include "pierce/analysis/overlaps.h"
 #include "pierce/error.h"
+#include "pierce/io/false_colour.h"
 #include "pierce/io/ray_source.h"
 #include "progress.h"
 #include "vtp_writer.h"
@@ -33,6 +35,7 @@ struct OverlapsCli {
   double ray_eps = 1e-5;
   std::string kernel = "queue";
   std::string out;
+  std::string png, png_size = "800x600", png_view = "-1,-1,-1";
   bool force = false, progress = false;
 };
 
@@ -195,6 +198,42 @@ void print_summary(const Scene& s, const CoplanarReport& c, const RayOverlapRepo
     std::printf("note: %zu rays ended inside a solid (open mesh?): see `pierce info`\n", r.rays_ending_inside);
 }
 
+// False-colour picture of OverlapCount per triangle (blue: none); false if cancelled.
+bool write_png(const Accel& accel, const TriangleOverlapArrays& a, const OverlapsCli& o) {
+  const Scene& scene = accel.scene();
+  ElementField field;
+  field.at = ElementField::At::face;
+  field.values.resize(scene.geometries().size());
+  std::uint32_t most = 0;
+  for (std::uint32_t g = 0; g < scene.geometries().size(); ++g) {
+    auto& vals = field.values[g];
+    vals.resize(scene.geometry(g).triangles.size());
+    for (std::size_t p = 0; p < vals.size(); ++p) {
+      const std::uint32_t count = a.overlap_count[a.tri_offset[g] + p];
+      vals[p] = double(count);
+      most = std::max(most, count);
+    }
+  }
+  FalseColourOptions fo;
+  parse_picture_size("--png-size", o.png_size, fo.width, fo.height);
+  fo.view_dir = parse_view_direction("--png-view", o.png_view);
+  fo.map = ColourMap::cool_warm;
+  fo.range_min = 0;
+  fo.range_max = std::max<std::uint32_t>(most, 1);
+  ProgressBar bar("picture", std::size_t(fo.height), o.progress);
+  const FalseColourImage img =
+      render_false_colour(accel, field, fo, [&](std::size_t done, std::size_t) { return bar.update(done); });
+  bar.finish();
+  if (!img.completed || interrupted()) return false;
+  const std::string png = false_colour_png(img);
+  OutputFile out(o.png, o.force);
+  if (std::fwrite(png.data(), 1, png.size(), out.stream()) != png.size()) throw std::runtime_error("write error");
+  out.commit();
+  std::printf("picture %s: %dx%d, OverlapCount 0 (blue) .. %g (red)\n", o.png.c_str(), img.width, img.height,
+              img.range_max);
+  return true;
+}
+
 int run_overlaps(const OverlapsCli& o) {
   InterruptGuard guard;
   const Format format = format_of(o.out);
@@ -202,6 +241,13 @@ int run_overlaps(const OverlapsCli& o) {
   const std::optional<KernelKind> kernel = parse_kernel(o.kernel);
   if (!kernel || !is_exact(*kernel)) throw InputError("--kernel '" + o.kernel + "': not an exact kernel");
   if (!(o.tol >= 0) || !std::isfinite(o.tol)) throw InputError("--tol must be a finite number >= 0");
+  if (!o.png.empty()) {
+    OutputFile::check_target(o.png, o.force);
+    if (o.png == o.out) throw InputError("--png and -o name the same file '" + o.png + "'");
+    int w = 0, h = 0;
+    parse_picture_size("--png-size", o.png_size, w, h);
+    parse_view_direction("--png-view", o.png_view);
+  }
 
   Scene scene;
   load_models(scene, o.model);
@@ -237,6 +283,8 @@ int run_overlaps(const OverlapsCli& o) {
 
   print_summary(scene, cop, rep, o);
   std::fflush(stdout);
+  if (!o.png.empty() && !write_png(accel, triangle_overlap_arrays(scene, &cop, &rep), o)) return cancelled();
+  std::fflush(stdout);
   if (format == Format::none) return 0;
   OutputFile out(o.out, o.force);
   switch (format) {
@@ -269,7 +317,11 @@ std::function<int()> register_overlaps(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--kernel", o->kernel, "Exact kernel to trace with (all give the same result)")->capture_default_str();
   cmd->add_option("-o,--out", o->out, "Output file: .vtp (per-triangle arrays), .csv (per solid pair) or .json (all)");
-  cmd->add_flag("--force", o->force, "Overwrite an existing output file");
+  cmd->add_option("--png", o->png, "Also render a false-colour picture of OverlapCount per triangle to this PNG");
+  cmd->add_option("--png-size", o->png_size, "Picture size WIDTHxHEIGHT in pixels")->capture_default_str();
+  cmd->add_option("--png-view", o->png_view, "Direction the camera looks along, x,y,z (z is up)")
+      ->capture_default_str();
+  cmd->add_flag("--force", o->force, "Overwrite existing output files");
   cmd->add_flag("--progress", o->progress, "Show a progress bar on stderr even when it is not a terminal");
   return [o] { return run_overlaps(*o); };
 }

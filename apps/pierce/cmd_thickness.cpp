@@ -16,6 +16,7 @@
 #include "output_file.h"
 #include "pierce/analysis/thickness.h"
 #include "pierce/error.h"
+#include "pierce/io/false_colour.h"
 #include "progress.h"
 #include "vtp_writer.h"
 
@@ -30,12 +31,14 @@ using analysis::ThicknessResult;
 struct ThicknessCli {
   ModelArgs model;
   std::string method = "ray", per = "vertex", kernel = "queue";
+  std::string origin_offsets = "auto", offset_set = "center";
   double min_thickness = 0;
   double max_distance = std::numeric_limits<double>::infinity();
   int cone_rays = 30;
   double cone_angle = 120;
   std::vector<std::string> solids;
   std::string out;
+  std::string png, png_size = "800x600", png_view = "-1,-1,-1";
   bool force = false, progress = false;
 };
 
@@ -188,12 +191,56 @@ void print_summary(const Scene& scene, const ThicknessResult& r, const analysis:
   }
 }
 
+// The thickness per vertex or face of each sampled solid (NaN elsewhere), thin elements marked.
+ElementField thickness_field(const Scene& scene, const ThicknessResult& r) {
+  ElementField field;
+  field.at = r.per == SampleAt::vertex ? ElementField::At::vertex : ElementField::At::face;
+  field.values.resize(scene.geometries().size());
+  field.marked.resize(scene.geometries().size());
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    const Geometry& g = scene.geometry(r.solid[i]);
+    const std::size_t n = r.per == SampleAt::vertex ? g.vertices.size() : g.triangles.size();
+    auto& vals = field.values[r.solid[i]];
+    auto& marks = field.marked[r.solid[i]];
+    if (vals.empty()) vals.assign(n, std::numeric_limits<double>::quiet_NaN()), marks.assign(n, 0);
+    vals[r.element[i]] = r.thickness[i];
+    marks[r.element[i]] = r.thin[i];
+  }
+  return field;
+}
+
+// False-colour picture of the thickness map; false if cancelled.
+bool write_png(const Accel& accel, const ThicknessResult& r, const ThicknessCli& o) {
+  FalseColourOptions fo;
+  parse_picture_size("--png-size", o.png_size, fo.width, fo.height);
+  fo.view_dir = parse_view_direction("--png-view", o.png_view);
+  ProgressBar bar("picture", std::size_t(fo.height), o.progress);
+  const FalseColourImage img = render_false_colour(accel, thickness_field(accel.scene(), r), fo,
+                                                   [&](std::size_t done, std::size_t) { return bar.update(done); });
+  bar.finish();
+  if (!img.completed || interrupted()) return false;
+  const std::string png = false_colour_png(img);
+  OutputFile out(o.png, o.force);
+  if (std::fwrite(png.data(), 1, png.size(), out.stream()) != png.size()) throw std::runtime_error("write error");
+  out.commit();
+  std::printf("picture %s: %dx%d, colour range %g .. %g (grey: no thickness%s)\n", o.png.c_str(), img.width,
+              img.height, img.range_min, img.range_max, o.min_thickness > 0 ? ", red: thin" : "");
+  return true;
+}
+
 int run_thickness(const ThicknessCli& o) {
   InterruptGuard guard;
   const Format format = format_of(o.out);
   OutputFile::check_target(o.out, o.force);  // before any long work
   const std::optional<KernelKind> kernel = parse_kernel(o.kernel);
   if (!kernel || !is_exact(*kernel)) throw InputError("--kernel '" + o.kernel + "': not an exact kernel");
+  if (!o.png.empty()) {
+    OutputFile::check_target(o.png, o.force);
+    if (o.png == o.out) throw InputError("--png and -o name the same file '" + o.png + "'");
+    int w = 0, h = 0;
+    parse_picture_size("--png-size", o.png_size, w, h);
+    parse_view_direction("--png-view", o.png_view);
+  }
 
   Scene scene;
   load_models(scene, o.model);
@@ -206,6 +253,10 @@ int run_thickness(const ThicknessCli& o) {
   opts.cone_rays = o.cone_rays;
   opts.cone_angle_deg = o.cone_angle;
   opts.kernel = *kernel;
+  opts.origin_offsets = o.origin_offsets == "on"    ? analysis::OffsetMode::on
+                        : o.origin_offsets == "off" ? analysis::OffsetMode::off
+                                                    : analysis::OffsetMode::automatic;
+  opts.offset_set = parse_hemisphere_set(o.offset_set).value_or(HemisphereSet::center);
   opts.solids = resolve_solids(scene, o.solids);
   const Accel accel(scene);
   if (interrupted()) return cancelled();
@@ -220,6 +271,8 @@ int run_thickness(const ThicknessCli& o) {
   if (!r.completed || interrupted()) return cancelled();
 
   print_summary(scene, r, opts);
+  std::fflush(stdout);
+  if (!o.png.empty() && !write_png(accel, r, o)) return cancelled();
   std::fflush(stdout);
   if (format == Format::none) return 0;
   OutputFile out(o.out, o.force);
@@ -257,8 +310,22 @@ std::function<int()> register_thickness(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--solid", o->solids, "Only these solids (name or id; repeatable); the others still bound rays");
   cmd->add_option("--kernel", o->kernel, "Exact kernel to trace with (all give the same result)")->capture_default_str();
+  cmd->add_option("--origin-offsets", o->origin_offsets,
+                  "Start face-sample rays where they leave an empty hemisphere on their triangle (Zoet); "
+                  "results are identical, only the work changes. auto: where the bench shows it pays "
+                  "(docs/BENCHMARKS.md; currently nowhere, so auto = off)")
+      ->check(CLI::IsMember({"on", "off", "auto"}))
+      ->capture_default_str();
+  cmd->add_option("--offset-set", o->offset_set, "Hemisphere set for --origin-offsets")
+      ->check(CLI::IsMember({"center", "vertex", "median", "median+center", "polygon", "random"}))
+      ->capture_default_str();
   cmd->add_option("-o,--out", o->out, "Output file: .vtp (ParaView), .csv or .json; without it only the summary");
-  cmd->add_flag("--force", o->force, "Overwrite an existing output file");
+  cmd->add_option("--png", o->png,
+                  "Also render a false-colour picture of the map to this PNG (grey: no thickness; red: thin)");
+  cmd->add_option("--png-size", o->png_size, "Picture size WIDTHxHEIGHT in pixels")->capture_default_str();
+  cmd->add_option("--png-view", o->png_view, "Direction the camera looks along, x,y,z (z is up)")
+      ->capture_default_str();
+  cmd->add_flag("--force", o->force, "Overwrite existing output files");
   cmd->add_flag("--progress", o->progress, "Show a progress bar on stderr even when it is not a terminal");
   return [o] { return run_thickness(*o); };
 }

@@ -16,5 +16,6 @@ std::function<int()> register_overlaps(CLI::App& app);
 std::function<int()> register_shot(CLI::App& app);
 std::function<int()> register_gqa(CLI::App& app);
 std::function<int()> register_run(CLI::App& app);
+std::function<int()> register_classify(CLI::App& app);
 
 }  // namespace pierce::cli

@@ -11,7 +11,7 @@ int main(int argc, char** argv) {
   std::vector<std::pair<CLI::App*, std::function<int()>>> commands;
   for (auto reg : {pierce::cli::register_hits, pierce::cli::register_info, pierce::cli::register_thickness,
                    pierce::cli::register_overlaps, pierce::cli::register_shot, pierce::cli::register_gqa,
-                   pierce::cli::register_run}) {
+                   pierce::cli::register_run, pierce::cli::register_classify}) {
     const std::size_t before = app.get_subcommands({}).size();
     auto run = reg(app);
     commands.emplace_back(app.get_subcommands({})[before], std::move(run));

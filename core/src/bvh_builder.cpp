@@ -8,6 +8,15 @@ namespace pierce {
 
 namespace {
 
+// SAH bin of a centroid coordinate. Near the float range the centroid or the extent overflow to
+// infinity and the position becomes NaN or infinite: clamp without converting those to int
+// (undefined behaviour; found by the kernel fuzzer).
+inline int bin_index(double c, double lo, double scale, int nb) {
+  const double x = (c - lo) * scale;
+  if (!(x > 0.0)) return 0;  // also NaN
+  return x < double(nb - 1) ? int(x) : nb - 1;
+}
+
 template <typename T>
 struct Builder {
   const BvhBuildOptions& opts;
@@ -47,10 +56,7 @@ struct Builder {
       std::vector<BBox<T>> bb(nb);
       std::vector<std::uint32_t> cnt(nb, 0);
       const double scale = double(nb) / double(ext[axis]);
-      auto bin_of = [&](std::uint32_t tri) {
-        const int k = int((double(centroid[tri][axis]) - double(cbox.lo[axis])) * scale);
-        return std::clamp(k, 0, nb - 1);
-      };
+      auto bin_of = [&](std::uint32_t tri) { return bin_index(centroid[tri][axis], cbox.lo[axis], scale, nb); };
       for (std::uint32_t i = begin; i < end; ++i) {
         const int k = bin_of(order[i]);
         bb[k].extend(tri_box[order[i]]);
@@ -88,8 +94,7 @@ struct Builder {
 
     const double scale = double(nb) / double(ext[best_axis]);
     auto* mid = std::partition(order.data() + begin, order.data() + end, [&](std::uint32_t tri) {
-      const int k = std::clamp(int((double(centroid[tri][best_axis]) - double(cbox.lo[best_axis])) * scale), 0, nb - 1);
-      return k <= best_bin;
+      return bin_index(centroid[tri][best_axis], cbox.lo[best_axis], scale, nb) <= best_bin;
     });
     split(index, begin, std::uint32_t(mid - order.data()), end);
   }

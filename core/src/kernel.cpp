@@ -4,9 +4,11 @@
 #include <tbb/parallel_for.h>
 
 #include <atomic>
+#include <cstdio>
 #include <mutex>
 
 #include "pierce/bvh_builder.h"
+#include "pierce/error.h"
 
 namespace pierce {
 
@@ -92,8 +94,27 @@ const Bvhd& Accel::bvh_double() const {
   return bvhd_->bvh;
 }
 
+std::string unsupported_reason(const Accel& accel, KernelKind kind) {
+  if (!uses_embree(kind)) return {};
+  const double m = accel.scene().bounds().max_abs_coord();
+  if (!(m > kEmbreeMaxCoord)) return {};
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "kernel %s: the scene has coordinates up to %.3g, beyond what Embree's BVH holds (%.3g); "
+                "use a Pierce kernel (restart, queue, nodecull, filter, buffered) for this model",
+                std::string(kernel_name(kind)).c_str(), m, kEmbreeMaxCoord);
+  return buf;
+}
+
+namespace {
+KernelKind checked_kind(const Accel& accel, KernelKind kind) {
+  if (std::string why = unsupported_reason(accel, kind); !why.empty()) throw InputError(why);
+  return kind;
+}
+}  // namespace
+
 HitIterator::HitIterator(const Accel& accel, KernelKind kind, const KernelOptions& opts)
-    : kind_(kind), impl_(make_impl(accel, kind, opts)) {}
+    : kind_(checked_kind(accel, kind)), impl_(make_impl(accel, kind, opts)) {}
 
 void collect_hits(HitIterator& it, const Ray& ray, std::size_t max_hits, std::vector<Hit>& out) {
   it.begin(ray, max_hits);

@@ -125,5 +125,74 @@ TEST(Validation, BadRaysGiveNoHits) {
   for (const Ray& r : bad) EXPECT_TRUE(reference_hits(w->scene, r, {}).empty()) << "reference " << str(r);
 }
 
+// Found by the kernel fuzzer: triangles near the float range overflow the SAH builder's centroids
+// and extents to infinity; binning them converted NaN to int (undefined behaviour, reported by
+// UBSan in the sanitizer build). The BVH must still be built and the small triangles found.
+TEST(Validation, TrianglesNearTheFloatRangeBuildAndTrace) {
+  gen::Mesh m{"huge", {}, {}};
+  auto add_tri = [&](Vec3d a, Vec3d b, Vec3d c) {
+    const auto i = std::uint32_t(m.vertices.size());
+    m.vertices.insert(m.vertices.end(), {a, b, c});
+    m.triangles.push_back({i, i + 1, i + 2});
+  };
+  for (int i = 0; i < 8; ++i) {
+    const double s = i % 2 ? -1.0 : 1.0, z = 100.0 + i;  // box centres overflow to +-inf in float
+    add_tri({s * 3.0e38, 0, z}, {s * 3.3e38, 0, z}, {s * 3.1e38, 1e38, z});
+  }
+  for (int i = 0; i < 8; ++i) add_tri({0, 0, double(i)}, {1, 0, double(i)}, {0, 1, double(i)});
+  const auto w = make_world({m});
+  const Ray ray{{0.25, 0.25, -1}, {0, 0, 1}};
+  std::vector<KernelKind> kinds(std::begin(kDoubleKernels), std::end(kDoubleKernels));
+  for (KernelKind k : kAllKernels)
+    if (!uses_embree(k)) kinds.push_back(k);
+  for (KernelKind k : kinds) {
+    HitIterator it(w->accel, k);
+    const auto hits = kernel_hits(it, ray);
+    ASSERT_EQ(hits.size(), 8u) << kernel_name(k);
+    for (std::size_t i = 0; i < hits.size(); ++i) {
+      EXPECT_EQ(hits[i].prim, 8 + i) << kernel_name(k);
+      EXPECT_EQ(hits[i].t, 1.0 + double(i)) << kernel_name(k);
+    }
+  }
+}
+
+// Found by the kernel fuzzer: Embree drops primitives beyond its FLT_LARGE (1.844e18), so its
+// kernels refuse such scenes with a clear error instead of missing hits; Pierce's kernels trace them.
+TEST(Validation, EmbreeKernelsRefuseScenesBeyondEmbreesRange) {
+  for (double far : {1e18, 1e30, 3e38}) {
+    const auto w = make_world({gen::Mesh{"far", {{-far, -far, 1}, {far, -far, 1}, {0, far, 1}}, {{0, 1, 2}}}});
+    const Ray ray{{0, 0, 0}, {0, 0, 1}};
+    for (KernelKind k : kAllKernels) {
+      if (uses_embree(k)) {
+        EXPECT_NE(unsupported_reason(w->accel, k), "") << kernel_name(k);
+        try {
+          HitIterator it(w->accel, k);
+          ADD_FAILURE() << kernel_name(k) << " accepted a scene at " << far;
+        } catch (const InputError& e) {
+          EXPECT_NE(std::string(e.what()).find("Embree"), std::string::npos) << e.what();
+        }
+      } else {
+        // Float kernels: beyond their exact range (docs/EXACTNESS.md), only sane output.
+        HitIterator it(w->accel, k);
+        for (const Hit& h : kernel_hits(it, ray)) EXPECT_TRUE(std::isfinite(h.t) && h.t >= 0) << kernel_name(k);
+      }
+    }
+    for (KernelKind k : kDoubleKernels) {  // inside the double kernels' range: exact
+      HitIterator it(w->accel, k);
+      const auto hits = kernel_hits(it, ray);
+      ASSERT_EQ(hits.size(), 1u) << kernel_name(k) << " at " << far;
+      EXPECT_EQ(hits[0].t, 1.0);
+    }
+  }
+  // Just inside the range every kernel works.
+  const double near = 1e17;
+  const auto w = make_world({gen::Mesh{"near", {{-near, -near, 1}, {near, -near, 1}, {0, near, 1}}, {{0, 1, 2}}}});
+  for (KernelKind k : kAllKernels) {
+    EXPECT_EQ(unsupported_reason(w->accel, k), "") << kernel_name(k);
+    HitIterator it(w->accel, k);
+    EXPECT_EQ(kernel_hits(it, {{0, 0, 0}, {0, 0, 1}}).size(), 1u) << kernel_name(k);
+  }
+}
+
 }  // namespace
 }  // namespace pierce::test

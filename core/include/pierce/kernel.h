@@ -52,6 +52,14 @@ std::string_view kernel_name(KernelKind k);
 int kernel_precision_bits(KernelKind k);
 std::optional<KernelKind> parse_kernel(std::string_view name);
 inline bool is_exact(KernelKind k) { return k != KernelKind::epsilon; }
+inline bool uses_embree(KernelKind k) {
+  return k == KernelKind::epsilon || k == KernelKind::embree_restart || k == KernelKind::embree_filter ||
+         k == KernelKind::embree_nodecull;
+}
+// Embree's BVH builder drops primitives whose bounds reach its FLT_LARGE (1.844e18), which would
+// lose hits silently; the Embree-based kernels refuse scenes with coordinates beyond this instead
+// (2^59, leaving room for the boxes' padding). Found by the kernel fuzzer.
+inline constexpr double kEmbreeMaxCoord = 0x1p59;
 
 struct KernelOptions {
   HitOrder order;
@@ -79,6 +87,10 @@ class Accel {
 
 // One kernel instance; reusable across rays (no allocation once warm). Not thread-safe:
 // use one per thread.
+// Empty if `kind` can trace the accel's scene; otherwise why not (an Embree kernel on a scene
+// beyond kEmbreeMaxCoord). HitIterator throws InputError with this message.
+std::string unsupported_reason(const Accel& accel, KernelKind kind);
+
 class HitIterator {
  public:
   HitIterator(const Accel& accel, KernelKind kind, const KernelOptions& opts = {});

@@ -19,6 +19,9 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// Converged needs the estimated standard error of the volume times this within the tolerance
+// (3: a normal error exceeds it with probability 0.3%; the estimate itself errs on the high side).
+constexpr double kErrorsPerStdError = 3.0;
 
 std::uint64_t pair_key(std::uint32_t x, std::uint32_t y) {
   if (x > y) std::swap(x, y);
@@ -49,16 +52,21 @@ struct AxisAcc {
   std::vector<double> length;     // total length inside
   std::vector<Vec3d> moment;      // sum of length * interval midpoint
   std::vector<std::uint64_t> crossings;
+  // Sum over neighbouring ray pairs of the squared difference of their lengths inside: the
+  // collapsed-strata variance estimate of the jittered grid's length sum (see run_gqa).
+  std::vector<double> pair_sq;
   std::map<std::uint64_t, PairAcc> overlaps, gaps;
   std::uint64_t unmatched = 0, unclosed = 0;
 
-  explicit AxisAcc(std::size_t items = 0) : length(items, 0.0), moment(items), crossings(items, 0) {}
+  explicit AxisAcc(std::size_t items = 0)
+      : length(items, 0.0), moment(items), crossings(items, 0), pair_sq(items, 0.0) {}
 
   void join(const AxisAcc& o) {
     for (std::size_t i = 0; i < length.size(); ++i) {
       length[i] += o.length[i];
       moment[i] = moment[i] + o.moment[i];
       crossings[i] += o.crossings[i];
+      pair_sq[i] += o.pair_sq[i];
     }
     for (const auto& [k, p] : o.overlaps) join_pair(overlaps[k], p);
     for (const auto& [k, p] : o.gaps) join_pair(gaps[k], p);
@@ -66,6 +74,36 @@ struct AxisAcc {
     unclosed += o.unclosed;
   }
 };
+
+// Length of one ray inside one item (solid or region).
+struct ItemLength {
+  std::size_t item;
+  double length;
+};
+
+// Sorts by item and merges entries of the same item.
+void merge_lengths(std::vector<ItemLength>& v) {
+  std::sort(v.begin(), v.end(), [](const ItemLength& a, const ItemLength& b) { return a.item < b.item; });
+  std::size_t out = 0;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    if (out > 0 && v[out - 1].item == v[k].item) v[out - 1].length += v[k].length;
+    else v[out++] = v[k];
+  }
+  v.resize(out);
+}
+
+// Adds (a - b)^2 per item over two merged per-ray length lists.
+void add_pair_sq(const std::vector<ItemLength>& a, const std::vector<ItemLength>& b, std::vector<double>& sq) {
+  std::size_t x = 0, y = 0;
+  while (x < a.size() || y < b.size()) {
+    if (y == b.size() || (x < a.size() && a[x].item < b[y].item)) sq[a[x].item] += a[x].length * a[x].length, ++x;
+    else if (x == a.size() || b[y].item < a[x].item) sq[b[y].item] += b[y].length * b[y].length, ++y;
+    else {
+      const double d = a[x].length - b[y].length;
+      sq[a[x].item] += d * d, ++x, ++y;
+    }
+  }
+}
 
 struct OpenPair {
   std::uint64_t key;
@@ -80,6 +118,7 @@ struct Worker {
   RayPartitions parts;
   std::vector<CsgInterval> intervals;
   std::vector<OpenPair> open, next_open;
+  std::array<std::vector<ItemLength>, 2> lengths;  // of the two rays of a neighbour pair
 
   Worker(const Accel& accel, const GqaOptions& o)
       : it(accel, o.kernel, KernelOptions{HitOrder{TieOrder::leave_before_enter}}),
@@ -88,20 +127,41 @@ struct Worker {
   }
 };
 
+// splitmix64: a fixed, portable hash (std:: distributions differ between standard libraries).
+std::uint64_t mix(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+
+// A 32-bit half of a hash as a position strictly inside (0, 1): never on a cell boundary.
+double unit(std::uint64_t bits32) { return (double(bits32 & 0xffffffffu) + 0.5) * 0x1.0p-32; }
+
 struct Grid {
   int axis = 0, n = 0;
   Vec3d lo, ext;
   double margin = 0;
   double cell_area = 0;
+  std::uint64_t jitter_key = 0;  // 0: rays through the cell centres; else seeds each ray's position in its cell
 
-  Ray ray(std::size_t k) const {
+  // The ray of cell k; `centre` gets the cell centre's point on the ray's entry plane.
+  Ray ray(std::size_t k, Vec3d& centre) const {
     const int u = (axis + 1) % 3, v = (axis + 2) % 3;
     const std::size_t i = k % std::size_t(n), j = k / std::size_t(n);
     Ray r;
     r.dir[std::size_t(axis)] = 1.0;
     r.org[std::size_t(axis)] = lo[std::size_t(axis)] - margin;
-    r.org[std::size_t(u)] = lo[std::size_t(u)] + ext[std::size_t(u)] * ((double(i) + 0.5) / double(n));
-    r.org[std::size_t(v)] = lo[std::size_t(v)] + ext[std::size_t(v)] * ((double(j) + 0.5) / double(n));
+    double fu = 0.5, fv = 0.5;
+    if (jitter_key != 0) {
+      const std::uint64_t h = mix(jitter_key ^ k);
+      fu = unit(h), fv = unit(h >> 32);
+    }
+    r.org[std::size_t(u)] = lo[std::size_t(u)] + ext[std::size_t(u)] * ((double(i) + fu) / double(n));
+    r.org[std::size_t(v)] = lo[std::size_t(v)] + ext[std::size_t(v)] * ((double(j) + fv) / double(n));
+    centre = r.org;
+    centre[std::size_t(u)] = lo[std::size_t(u)] + ext[std::size_t(u)] * ((double(i) + 0.5) / double(n));
+    centre[std::size_t(v)] = lo[std::size_t(v)] + ext[std::size_t(v)] * ((double(j) + 0.5) / double(n));
     return r;
   }
 };
@@ -112,8 +172,11 @@ void close_pair(AxisAcc& acc, const OpenPair& p, double t_out, const Ray& ray) {
   add_interval(acc.overlaps[p.key], t_out - p.t_in, ray.org + ray.dir * p.t_in);
 }
 
-void measure_ray(Worker& w, const GqaOptions& o, const Ray& ray, std::size_t solid_count, double tie,
-                 AxisAcc& acc) {
+// Moments take the cross-section coordinates of the cell centre, not of the jittered ray: that is
+// exact for every cell the solid fills, where the ray's own position would only add noise.
+void measure_ray(Worker& w, const GqaOptions& o, const Ray& ray, Vec3d centre, std::size_t solid_count, double tie,
+                 AxisAcc& acc, std::vector<ItemLength>& lengths) {
+  lengths.clear();
   w.hits.clear();
   collect_hits(w.it, ray, 0, w.hits);
   w.builder.build(w.hits, w.parts);
@@ -128,10 +191,11 @@ void measure_ray(Worker& w, const GqaOptions& o, const Ray& ray, std::size_t sol
     const bool adjacent = k > 0 && ps[k - 1].t_out == p.t_in;
     const auto prev = k > 0 ? w.parts.solids_of(ps[k - 1]) : std::span<const std::uint32_t>{};
     const double len = p.t_out - p.t_in;  // |dir| = 1
-    const Vec3d mid = ray.org + ray.dir * (0.5 * (p.t_in + p.t_out));
+    const Vec3d mid = centre + ray.dir * (0.5 * (p.t_in + p.t_out));
     for (std::uint32_t g : solids) {
       acc.length[g] += len;
       acc.moment[g] = acc.moment[g] + mid * len;
+      lengths.push_back({g, len});
       if (!adjacent || !contains_sorted(prev, g)) acc.crossings[g] += 2;
     }
     // Overlap runs: a pair's run continues through adjacent partitions that both contain it.
@@ -168,10 +232,12 @@ void measure_ray(Worker& w, const GqaOptions& o, const Ray& ray, std::size_t sol
     for (const CsgInterval& iv : w.intervals) {
       const double len = iv.t_out - iv.t_in;
       acc.length[item] += len;
-      acc.moment[item] = acc.moment[item] + (ray.org + ray.dir * (0.5 * (iv.t_in + iv.t_out))) * len;
+      acc.moment[item] = acc.moment[item] + (centre + ray.dir * (0.5 * (iv.t_in + iv.t_out))) * len;
       acc.crossings[item] += 2;
+      lengths.push_back({item, len});
     }
   }
+  merge_lengths(lengths);
 }
 
 struct PassResult {
@@ -196,17 +262,33 @@ PassResult run_pass(const Accel& accel, const GqaOptions& o, int n, std::size_t 
     g.lo = b.lo;
     g.ext = b.extent();
     g.margin = 0.05 * accel.scene().scale();
+    if (o.jitter) g.jitter_key = mix(mix(mix(o.seed) ^ std::uint64_t(n)) ^ std::uint64_t(axis)) | 1;
     const int u = (axis + 1) % 3, v = (axis + 2) % 3;
     g.cell_area = g.ext[std::size_t(u)] * g.ext[std::size_t(v)] / double(per_axis);
     res.cell_area[std::size_t(axis)] = g.cell_area;
-    // Deterministic split and join order: the sums do not depend on the thread count.
+    // Work units are pairs of neighbouring cells along u (cells 2a and 2a+1 of a row; with n odd
+    // the row's last cell has no partner). Deterministic split and join order: the sums do not
+    // depend on the thread count.
+    const std::size_t pairs_per_row = (std::size_t(n) + 1) / 2;
     res.axes[std::size_t(axis)] = tbb::parallel_deterministic_reduce(
-        tbb::blocked_range<std::size_t>(0, per_axis, std::max<std::size_t>(64, std::size_t(n))), AxisAcc(items),
+        tbb::blocked_range<std::size_t>(0, std::size_t(n) * pairs_per_row, std::max<std::size_t>(32, pairs_per_row)),
+        AxisAcc(items),
         [&](const tbb::blocked_range<std::size_t>& r, AxisAcc acc) {
           if (cancelled.load(std::memory_order_relaxed)) return acc;
           Worker& w = workers.local();
-          for (std::size_t k = r.begin(); k != r.end(); ++k) measure_ray(w, o, g.ray(k), solid_count, tie, acc);
-          const std::size_t d = done.fetch_add(r.size()) + r.size();
+          Vec3d centre;
+          std::size_t rays = 0;
+          for (std::size_t unit = r.begin(); unit != r.end(); ++unit) {
+            const std::size_t i = 2 * (unit % pairs_per_row), j = unit / pairs_per_row;
+            const std::size_t cells = i + 1 < std::size_t(n) ? 2 : 1;
+            for (std::size_t c = 0; c < cells; ++c) {
+              const Ray ray = g.ray(j * std::size_t(n) + i + c, centre);
+              measure_ray(w, o, ray, centre, solid_count, tie, acc, w.lengths[c]);
+            }
+            if (cells == 2) add_pair_sq(w.lengths[0], w.lengths[1], acc.pair_sq);
+            rays += cells;
+          }
+          const std::size_t d = done.fetch_add(rays) + rays;
           if (progress && !progress(n, d, 3 * per_axis)) cancelled = true;
           return acc;
         },
@@ -223,7 +305,7 @@ PassResult run_pass(const Accel& accel, const GqaOptions& o, int n, std::size_t 
 
 // Per-item quantities of one pass.
 void quantities(const PassResult& pass, std::size_t item, GqaQuantities& q) {
-  double vol = 0;
+  double vol = 0, variance = 0;
   Vec3d moment{};
   q.crossings = 0;
   for (std::size_t a = 0; a < 3; ++a) {
@@ -232,8 +314,10 @@ void quantities(const PassResult& pass, std::size_t item, GqaQuantities& q) {
     vol += q.axis_volume[a];
     moment = moment + acc.moment[item] * pass.cell_area[a];
     q.crossings += acc.crossings[item];
+    variance += acc.pair_sq[item] * pass.cell_area[a] * pass.cell_area[a];
   }
   q.volume = vol / 3.0;
+  q.std_error = std::sqrt(variance) / 3.0;
   q.centroid = vol > 0 ? moment * (1.0 / vol) : Vec3d{kNaN, kNaN, kNaN};
 }
 
@@ -296,6 +380,7 @@ GqaResult run_gqa(const Accel& accel, const GqaOptions& o, const GqaProgress& pr
   const std::size_t items = solid_count + o.regions.size();
   GqaResult result;
   result.tolerance = o.tolerance;
+  result.seed = o.jitter ? o.seed : 0;
   result.solids.resize(solid_count);
   for (std::uint32_t g = 0; g < solid_count; ++g) {
     result.solids[g].name = scene.geometry(g).name;
@@ -340,6 +425,7 @@ GqaResult run_gqa(const Accel& accel, const GqaOptions& o, const GqaProgress& pr
       double c = std::abs(q.volume - prev[i].volume) / scale;
       q.change = c;
       for (double av : q.axis_volume) c = std::max(c, std::abs(av - q.volume) / scale);
+      if (o.jitter) c = std::max(c, kErrorsPerStdError * q.std_error / scale);
       const bool had = std::isfinite(prev[i].centroid.x), has = std::isfinite(q.centroid.x);
       if (had != has) c = kInf;
       else if (has) c = std::max(c, length(q.centroid - prev[i].centroid) / diag);

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 
 #include "pierce/analysis/bvh_query.h"
@@ -26,6 +27,7 @@ struct Sample {
   std::uint32_t out_index;  // position in the result arrays
   Vec3d point, inward;
   std::uint32_t exclude_begin, exclude_end;  // range in SampleSet::exclude
+  std::uint32_t prim = kInvalidId;           // face samples: the triangle the point lies on
 };
 
 struct SampleSet {
@@ -78,6 +80,18 @@ void check_options(const Accel& accel, const ThicknessOptions& o) {
 }
 
 }  // namespace
+
+bool uses_origin_offsets(const ThicknessOptions& opts) {
+  if (opts.per != SampleAt::face || opts.method == ThicknessMethod::sphere) return false;
+  switch (opts.origin_offsets) {
+    case OffsetMode::off: return false;
+    case OffsetMode::on: return true;
+    // docs/BENCHMARKS.md, "Origin offsets": building the hemispheres costs more than they save
+    // on every measured model, for ray and cone alike, so `automatic` does not use them.
+    case OffsetMode::automatic: return false;
+  }
+  return false;
+}
 
 double tie_distance(const Scene& scene, double tie_tolerance_rel) {
   return tie_tolerance_rel * (scene.scale() + scene.bounds().max_abs_coord());
@@ -139,8 +153,9 @@ std::string_view status_name(ThicknessStatus s) {
 // before its enters, so a duplicated far face exits once and a zero-thickness fold (leave and
 // enter together) still exits where the material ends.
 double ray_exit_distance(HitIterator& it, std::uint32_t geom, Vec3d point, Vec3d dir, double max_distance,
-                         double tie) {
-  it.begin(Ray{point, dir, tie, max_distance});
+                         double tie, double offset) {
+  // Below the offset only the start triangle can be crossed, and its crossing is below `tie`.
+  it.begin(Ray{point, dir, std::max(tie, offset), max_distance});
   int depth = 1;
   double group_t = -std::numeric_limits<double>::infinity();
   bool left_in_group = false, enter_pending = false;
@@ -223,7 +238,7 @@ ThicknessResult compute_thickness(const Accel& accel, const ThicknessOptions& op
         if (n == Vec3d{}) continue;
         const std::uint32_t ex = std::uint32_t(set.exclude.size());
         set.exclude.push_back(t);
-        set.samples.push_back({g, std::uint32_t(res.size() - 1), c, n * -1.0, ex, ex + 1});
+        set.samples.push_back({g, std::uint32_t(res.size() - 1), c, n * -1.0, ex, ex + 1, t});
       }
     }
     ranges.emplace_back(base, res.size());
@@ -243,6 +258,11 @@ ThicknessResult compute_thickness(const Accel& accel, const ThicknessOptions& op
   }
 
   const double tie = tie_distance(scene, opts.tie_tolerance_rel);
+  std::optional<OriginOffsets> offsets;
+  if (uses_origin_offsets(opts)) offsets = build_origin_offsets(scene, accel.bvh(), opts.offset_set);
+  auto offset_of = [&](const Sample& s, Vec3d dir) {
+    return offsets && s.prim != kInvalidId ? safe_offset(*offsets, s.geom, s.prim, s.point, dir) : 0.0;
+  };
   const std::vector<ConeDir> cone =
       opts.method == ThicknessMethod::cone ? cone_directions(opts.cone_rays, opts.cone_angle_deg)
                                            : std::vector<ConeDir>{};
@@ -261,7 +281,8 @@ ThicknessResult compute_thickness(const Accel& accel, const ThicknessOptions& op
   const std::size_t total = set.samples.size();
 
   auto measure = [&](Worker& w, const Sample& s) -> double {
-    const double ray_t = ray_exit_distance(w.it, s.geom, s.point, s.inward, opts.max_distance, tie);
+    const double ray_t =
+        ray_exit_distance(w.it, s.geom, s.point, s.inward, opts.max_distance, tie, offset_of(s, s.inward));
     switch (opts.method) {
       case ThicknessMethod::ray: return ray_t;
       case ThicknessMethod::cone: {
@@ -271,7 +292,8 @@ ThicknessResult compute_thickness(const Accel& accel, const ThicknessOptions& op
         std::size_t escaped = 0;
         for (std::size_t i = 0; i < cone.size(); ++i) {
           const Vec3d d = u * cone[i].local.x + v * cone[i].local.y + s.inward * cone[i].local.z;
-          const double t = i == 0 ? ray_t : ray_exit_distance(w.it, s.geom, s.point, d, opts.max_distance, tie);
+          const double t =
+              i == 0 ? ray_t : ray_exit_distance(w.it, s.geom, s.point, d, opts.max_distance, tie, offset_of(s, d));
           if (std::isnan(t)) ++escaped;
           else w.lens.emplace_back(t, cone[i].angle);
         }

@@ -13,6 +13,7 @@
 // of "inside solid s", is true for the partition's solid set; adjacent true partitions merge. No
 // operation is a complement, so air is always outside and only partitions need evaluating. Touching
 // solids (adjacent partitions) merge into one interval under union with no seam.
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -83,8 +84,10 @@ std::string_view point_class_name(PointClass c);
 // Inside / outside / on of points with respect to an expression, by the same machinery: rays
 // through the point along two fixed skew directions, their partitions, the expression's intervals.
 // "on": the point lies within `tolerance` (absolute length) of an interval's end on either ray, or
-// the two rays disagree (which only happens at a boundary). Partitions are snapped with the same
-// tolerance (snap_partitions). Not thread-safe (one per thread).
+// the two rays disagree (which only happens at a boundary), or it lies within `tolerance` of a
+// solid's surface that both rays only graze (a vertex or edge the rays touch at the point alone)
+// and being inside that solid would change the expression's value there. Partitions are snapped
+// with the same tolerance (snap_partitions). Not thread-safe (one per thread).
 class PointClassifier {
  public:
   // tolerance = tie_distance(scene, tolerance_rel) (thickness.h). The kernel must be exact.
@@ -94,7 +97,8 @@ class PointClassifier {
   double tolerance() const { return tolerance_; }
 
  private:
-  PointClass classify_along(Vec3d point, Vec3d dir);
+  PointClass classify_along(Vec3d point, Vec3d dir, std::size_t which);  // which: 0 or 1
+  bool on_grazed_surface(Vec3d point);
 
   const Accel* accel_;
   HitIterator it_;
@@ -104,6 +108,9 @@ class PointClassifier {
   std::vector<Hit> hits_;
   RayPartitions parts_;
   std::vector<CsgInterval> intervals_;
+  // Per ray: the solids claiming the ray just before and just after the point (t = -+probe).
+  std::array<std::vector<std::uint32_t>, 4> sides_;
+  std::vector<std::uint32_t> near_, with_, stack_;  // scratch for on_grazed_surface
 };
 
 // Angle in degrees between a ray direction and a surface's normal, in [0, 90]; NaN for an invalid

@@ -2,14 +2,19 @@
 // Ray-grid quantities (BRL-CAD gqa): volume, centroid and surface crossings of every solid (and of
 // CSG regions), overlaps and gaps between solids, from grids of parallel rays along x, y and z.
 //
-// A pass with grid size n shoots, along each axis, n x n rays through the centres of the cells of
-// the scene bounds' cross-section. Each ray's partitions give, per solid, the length inside it; a
-// solid's volume along that axis is the sum of lengths times the cell area (the midpoint rule across
-// the grid, exact along the ray), its first moment gives the centroid. The estimate is the mean of
-// the three axes. Passes double n (halve the spacing) until, for every solid and region, the volume
-// changed by at most `tolerance` (relative) since the previous pass, the three axes agree within
-// `tolerance`, and the centroid moved by at most `tolerance` times the scene diagonal; or until
-// max_n, which is then reported as not converged.
+// A pass with grid size n shoots, along each axis, n x n rays, one per cell of the scene bounds'
+// cross-section, at a seeded random point of its cell (stratified sampling: with rays through the
+// cell centres, a face parallel to the rays between cell boundaries gives a first-order error that
+// nested passes and the three axes repeat alike, so the convergence test below could not see it).
+// Each ray's partitions give, per solid, the length inside it; a solid's volume along that axis is
+// the sum of lengths times the cell area (exact along the ray), its first moment (cell centre across,
+// interval midpoint along) gives the centroid. The estimate is the mean of the three axes; its
+// standard error is estimated from the differences between neighbouring cells (cells 2a and 2a+1 of
+// a row; an overestimate where a face passes between them). Passes double n (halve the spacing)
+// until, for every solid and region, the volume changed by at most `tolerance` (relative) since the
+// previous pass, the three axes agree within `tolerance`, 3 standard errors are within `tolerance`,
+// and the centroid moved by at most `tolerance` times the scene diagonal; or until max_n, which is
+// then reported as not converged. Converged thus means within the tolerance with high probability.
 //
 // Overlaps: maximal intervals of a ray inside both solids of a pair, reported per pair from the last
 // pass with their count, largest line-of-sight depth, where it starts, the largest depth seen along
@@ -40,6 +45,9 @@ struct GqaOptions {
   double tie_tolerance_rel = 1e-6;
   double gap_min = 0;  // gaps no longer than this are not reported (absolute length)
   double gap_max = std::numeric_limits<double>::infinity();  // nor longer than this
+  // Shift each pass's and each axis's ray lattice by a seeded random sub-cell offset (see above).
+  bool jitter = true;
+  std::uint64_t seed = 1;
 };
 
 struct GqaQuantities {
@@ -50,6 +58,7 @@ struct GqaQuantities {
   std::array<double, 3> axis_volume{};  // estimate from the rays along x, y, z
   std::uint64_t crossings = 0;          // surface crossings by the last pass's rays
   double change = 0;                    // relative change of the volume since the previous pass
+  double std_error = 0;                 // estimated standard error of volume (jittered grids; 0 otherwise)
 };
 
 struct GqaPair {
@@ -80,6 +89,7 @@ struct GqaResult {
   std::vector<GqaPass> passes;
   int n = 0;  // grid size of the last pass
   double tolerance = 0;
+  std::uint64_t seed = 0;  // GqaOptions::seed (0 when not jittered)
   bool converged = false;
   bool completed = true;  // false if cancelled (results are then from the last finished pass)
   std::uint64_t unmatched_leaves = 0, unclosed = 0;  // bad-mesh events in the last pass

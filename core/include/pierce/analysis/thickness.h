@@ -26,12 +26,15 @@
 #include "pierce/analysis/progress.h"
 #include "pierce/analysis/statistics.h"
 #include "pierce/kernel.h"
+#include "pierce/origin_offsets.h"
 
 namespace pierce::analysis {
 
 enum class ThicknessMethod { ray, cone, sphere };
 enum class SampleAt { vertex, face };
 enum class ConeAggregate { shapira, median };
+// Origin offsets for rays from face samples: never change a result, only the work.
+enum class OffsetMode { off, on, automatic };
 
 struct ThicknessOptions {
   ThicknessMethod method = ThicknessMethod::ray;
@@ -47,6 +50,12 @@ struct ThicknessOptions {
   // same solid closer together than this are treated as simultaneous.
   double tie_tolerance_rel = 1e-6;
   KernelKind kernel = KernelKind::queue;  // any exact kernel gives the same result
+  // Ray and cone rays from face samples start where they leave an empty hemisphere on their
+  // triangle (origin_offsets.h; vertex samples lie on every hemisphere's rim and gain nothing).
+  // `automatic`: only where the bench shows they pay (docs/BENCHMARKS.md, "Origin offsets"):
+  // so far nowhere once the hemisphere build is counted, so it means off.
+  OffsetMode origin_offsets = OffsetMode::automatic;
+  HemisphereSet offset_set = HemisphereSet::center;
   std::vector<std::uint32_t> solids;      // geometries to sample (all when empty); the others
                                           // still take part as neighbours
   std::vector<double> percentiles = kDefaultPercentiles;
@@ -97,8 +106,11 @@ std::string_view status_name(ThicknessStatus s);
 // Ray thickness of one sample: from `point` along the unit inward direction `dir`, the
 // distance to where the ray leaves geometry `geom` (NaN if it does not within max_distance).
 // `tie` is tie_distance(). The iterator must use TieOrder::leave_before_enter.
+// `offset`: a safe_offset() for this ray (0 for none); the search starts at max(tie, offset).
 double ray_exit_distance(HitIterator& it, std::uint32_t geom, Vec3d point, Vec3d dir, double max_distance,
-                         double tie);
+                         double tie, double offset = 0);
+// Whether compute_thickness uses origin offsets with these options.
+bool uses_origin_offsets(const ThicknessOptions& opts);
 
 // The cone method's aggregate of (length, angle to the axis) pairs, at least one: lengths
 // farther than one standard deviation from the median are dropped; the rest are averaged with

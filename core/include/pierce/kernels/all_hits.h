@@ -26,6 +26,7 @@ class AllHitsKernel {
       const BvhNode<T>& n = bvh_->nodes[stack_.back()];
       stack_.pop_back();
       PIERCE_COUNT(counters, traversal_steps, 1);
+      PIERCE_COUNT(counters, leaf_visits, n.is_leaf() ? 1 : 0);
       if (!n.is_leaf()) {
         visit_children(*bvh_, n, r, r.tmin, r.tmax, counters, [&](std::uint32_t c, T) { stack_.push_back(c); });
         continue;

@@ -89,6 +89,7 @@ class BufferedKernel {
     }
     PIERCE_COUNT(counters, traversal_steps, 1);
     const BvhNode<T>& n = bvh_->nodes[e.node];
+    PIERCE_COUNT(counters, leaf_visits, n.is_leaf() ? 1 : 0);
     if (!n.is_leaf()) {
       const T up = upper();
       visit_children(*bvh_, n, ray_, lower(), ray_.tmax, counters, [&](std::uint32_t c, T tn) {

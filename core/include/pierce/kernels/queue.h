@@ -39,6 +39,7 @@ class QueueKernel {
       nodes_.pop_back();
       PIERCE_COUNT(counters, traversal_steps, 1);
       const BvhNode<T>& n = bvh_->nodes[ni];
+      PIERCE_COUNT(counters, leaf_visits, n.is_leaf() ? 1 : 0);
       if (!n.is_leaf()) {
         visit_children(*bvh_, n, ray_, ray_.tmin, ray_.tmax, counters,
                        [&](std::uint32_t c, T tn) { push_node({tn, c}); });

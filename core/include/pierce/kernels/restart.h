@@ -33,6 +33,7 @@ class RestartKernel {
       if (e.tn > hi) continue;  // culled by the current closest hit
       PIERCE_COUNT(counters, traversal_steps, 1);
       const BvhNode<T>& n = bvh_->nodes[e.node];
+      PIERCE_COUNT(counters, leaf_visits, n.is_leaf() ? 1 : 0);
       if (!n.is_leaf()) {
         visit_children(*bvh_, n, ray_, lo, hi, counters,
                        [&](std::uint32_t c, T tn) { stack_.push_back({tn, c}); });

@@ -1,0 +1,60 @@
+#pragma once
+// False-colour pictures of per-element values (thickness, overlap count) rendered by Pierce
+// itself: one orthographic primary ray per pixel, closest hit, Lambert-shaded colour-mapped
+// value, white background, colour bar with the value range. No VTK, no display needed.
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "pierce/analysis/progress.h"
+#include "pierce/kernel.h"
+
+namespace pierce {
+
+enum class ColourMap { viridis, cool_warm };
+
+// Values to paint, per geometry of the scene: one per vertex (interpolated across each triangle)
+// or one per triangle. A geometry with no values, and NaN values, are painted grey.
+struct ElementField {
+  enum class At { vertex, face };
+  At at = At::face;
+  std::vector<std::vector<double>> values;        // [geom][vertex or triangle]
+  std::vector<std::vector<std::uint8_t>> marked;  // optional, same shape: 1 = highlight (e.g. thin)
+};
+
+struct FalseColourOptions {
+  int width = 800, height = 600;      // whole picture, colour bar included
+  Vec3d view_dir{-1, -1, -1};         // the direction the camera looks along (z is up)
+  ColourMap map = ColourMap::viridis;
+  // Value range of the colour map; NaN = the finite values' min / max.
+  double range_min = std::numeric_limits<double>::quiet_NaN();
+  double range_max = std::numeric_limits<double>::quiet_NaN();
+  bool legend = true;  // colour bar with min / max labels on the right (if the picture is wide enough)
+  KernelKind kernel = KernelKind::queue;
+};
+
+struct FalseColourImage {
+  int width = 0, height = 0;
+  std::vector<double> rgb;  // width * height * 3 samples in [0, 1], rows from the top
+  double range_min = 0, range_max = 0;
+  std::size_t pixels_hit = 0;
+  bool completed = true;  // false if cancelled through the progress callback
+};
+
+// Colour of value s in [0, 1] (clamped) under the map.
+Vec3d colour_of(ColourMap map, double s);
+
+// Throws std::invalid_argument on bad sizes (below 16 or above 16384 pixels per side), a zero
+// or non-finite view direction, or a field whose shape does not match the scene.
+FalseColourImage render_false_colour(const Accel& accel, const ElementField& field, const FalseColourOptions& opts = {},
+                                     const analysis::Progress& progress = {});
+
+// The picture as 8-bit RGB PNG bytes.
+std::string false_colour_png(const FalseColourImage& image);
+
+// Command-line forms: "WxH" (e.g. 800x600) and "x,y,z". Throw InputError naming `option`.
+void parse_picture_size(const std::string& option, const std::string& spec, int& width, int& height);
+Vec3d parse_view_direction(const std::string& option, const std::string& spec);
+
+}  // namespace pierce
