@@ -71,6 +71,9 @@ struct KernelOptions {
 class Accel {
  public:
   explicit Accel(const Scene& scene);
+  // Neither copyable nor movable: the Embree scenes keep pointers to bvh_'s triangles.
+  Accel(const Accel&) = delete;
+  Accel& operator=(const Accel&) = delete;
   const Scene& scene() const { return *scene_; }
   const Bvhf& bvh() const { return bvh_; }
   const EmbreeAccel& embree() const { return *embree_; }
