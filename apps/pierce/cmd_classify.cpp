@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "csv_text.h"
 #include "command.h"
 #include "interrupt.h"
 #include "model_args.h"
@@ -101,18 +102,7 @@ struct Target {
   CsgExpr expr;
 };
 
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+std::string num(double v) { return exact_number(v, "nan"); }
 
 std::string short_num(double v) {
   char buf[32];

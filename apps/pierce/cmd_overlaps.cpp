@@ -11,6 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "csv_text.h"
+#include "picture.h"
 #include "command.h"
 #include "interrupt.h"
 #include "model_args.h"
@@ -67,19 +69,7 @@ std::vector<Ray> make_rays(const std::string& spec, const Scene& scene) {
   return axis_grid_rays(scene.bounds(), int(n));
 }
 
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
-std::string num(double v) {
-  if (std::isnan(v)) return "nan";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+std::string num(double v) { return exact_number(v, "nan"); }
 
 nlohmann::ordered_json vec(Vec3d p) { return {p.x, p.y, p.z}; }
 nlohmann::ordered_json maybe(double v) { return std::isnan(v) ? nlohmann::ordered_json() : nlohmann::ordered_json(v); }
@@ -220,17 +210,10 @@ bool write_png(const Accel& accel, const TriangleOverlapArrays& a, const Overlap
   fo.map = ColourMap::cool_warm;
   fo.range_min = 0;
   fo.range_max = std::max<std::uint32_t>(most, 1);
-  ProgressBar bar("picture", std::size_t(fo.height), o.progress);
-  const FalseColourImage img =
-      render_false_colour(accel, field, fo, [&](std::size_t done, std::size_t) { return bar.update(done); });
-  bar.finish();
-  if (!img.completed || interrupted()) return false;
-  const std::string png = false_colour_png(img);
-  OutputFile out(o.png, o.force);
-  if (std::fwrite(png.data(), 1, png.size(), out.stream()) != png.size()) throw std::runtime_error("write error");
-  out.commit();
-  std::printf("picture %s: %dx%d, OverlapCount 0 (blue) .. %g (red)\n", o.png.c_str(), img.width, img.height,
-              img.range_max);
+  const auto img = write_picture(accel, field, fo, o.png, o.force, o.progress);
+  if (!img) return false;
+  std::printf("picture %s: %dx%d, OverlapCount 0 (blue) .. %g (red)\n", o.png.c_str(), img->width, img->height,
+              img->range_max);
   return true;
 }
 

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "csv_text.h"
 #include "command.h"
 #include "interrupt.h"
 #include "model_args.h"
@@ -38,21 +39,9 @@ int cancelled() {
   return kExitCancelled;
 }
 
-std::string num(double v) {
-  if (std::isnan(v)) return "";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+std::string num(double v) { return exact_number(v, ""); }
 
 std::string id(std::uint32_t g) { return g == kInvalidId ? "" : std::to_string(g); }
-
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
 
 void write_rays_csv(std::FILE* f, const std::vector<Ray>& rays, const EffectsConfig& cfg, const EffectsResult& r) {
   std::string head = "ray,ox,oy,oz,dx,dy,dz";

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "csv_text.h"
 #include "command.h"
 #include "interrupt.h"
 #include "model_args.h"
@@ -82,19 +83,7 @@ std::string solids_text(const Scene& s, const ShotRow& r, const CsgExpr* csg, co
   return t;
 }
 
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
-std::string num(double v) {
-  if (std::isnan(v)) return "";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+std::string num(double v) { return exact_number(v, ""); }
 
 std::string short_num(double v) {
   if (std::isnan(v)) return "-";

@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "csv_text.h"
+#include "picture.h"
 #include "command.h"
 #include "interrupt.h"
 #include "model_args.h"
@@ -77,13 +79,6 @@ std::vector<std::uint32_t> resolve_solids(const Scene& scene, const std::vector<
                      std::to_string(scene.geometries().size()) + " solids; see `pierce info`)");
   }
   return ids;
-}
-
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
 }
 
 std::string number(double v) {
@@ -214,17 +209,10 @@ bool write_png(const Accel& accel, const ThicknessResult& r, const ThicknessCli&
   FalseColourOptions fo;
   parse_picture_size("--png-size", o.png_size, fo.width, fo.height);
   fo.view_dir = parse_view_direction("--png-view", o.png_view);
-  ProgressBar bar("picture", std::size_t(fo.height), o.progress);
-  const FalseColourImage img = render_false_colour(accel, thickness_field(accel.scene(), r), fo,
-                                                   [&](std::size_t done, std::size_t) { return bar.update(done); });
-  bar.finish();
-  if (!img.completed || interrupted()) return false;
-  const std::string png = false_colour_png(img);
-  OutputFile out(o.png, o.force);
-  if (std::fwrite(png.data(), 1, png.size(), out.stream()) != png.size()) throw std::runtime_error("write error");
-  out.commit();
-  std::printf("picture %s: %dx%d, colour range %g .. %g (grey: no thickness%s)\n", o.png.c_str(), img.width,
-              img.height, img.range_min, img.range_max, o.min_thickness > 0 ? ", red: thin" : "");
+  const auto img = write_picture(accel, thickness_field(accel.scene(), r), fo, o.png, o.force, o.progress);
+  if (!img) return false;
+  std::printf("picture %s: %dx%d, colour range %g .. %g (grey: no thickness%s)\n", o.png.c_str(), img->width,
+              img->height, img->range_min, img->range_max, o.min_thickness > 0 ? ", red: thin" : "");
   return true;
 }
 

@@ -1,0 +1,26 @@
+#pragma once
+// Text fields shared by the CLI's CSV writers.
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <string_view>
+
+namespace pierce::cli {
+
+// A CSV field, quoted (RFC 4180) only when it holds a separator, quote or line break.
+inline std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+// A double that reads back to the same value; NaN is written as `nan_text`.
+inline std::string exact_number(double v, std::string_view nan_text) {
+  if (std::isnan(v)) return std::string(nan_text);
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+}  // namespace pierce::cli
