@@ -24,6 +24,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench_machine.h"
 #include "bench_scenes.h"
 #include "pierce/bvh_builder.h"
 #include "pierce/kernel.h"
@@ -37,23 +38,6 @@ using nlohmann::json;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // ---------------------------------------------------------------- machine
-
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  for (std::string line; std::getline(in, line);)
-    if (line.rfind("model name", 0) == 0) {
-      const auto colon = line.find(':');
-      if (colon != std::string::npos) return line.substr(line.find_first_not_of(" \t", colon + 1));
-    }
-  return "unknown";
-}
-
-std::string load_average() {
-  std::ifstream in("/proc/loadavg");
-  std::string a, b, c;
-  if (in >> a >> b >> c) return a + " " + b + " " + c;
-  return "unknown";
-}
 
 // ---------------------------------------------------------------- measuring
 

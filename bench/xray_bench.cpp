@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench_machine.h"
 #include "pierce/analysis/effects.h"
 #include "pierce/generators.h"
 
@@ -40,20 +41,6 @@ struct Row {
   double seconds = 0;
   std::uint64_t rays = 0, traversed = 0, existing = 0, settled_early = 0;
 };
-
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  for (std::string line; std::getline(in, line);)
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  return "unknown";
-}
-
-std::string load_average() {
-  std::ifstream in("/proc/loadavg");
-  std::string a, b, c;
-  if (in >> a >> b >> c) return a + " " + b + " " + c;
-  return "unknown";
-}
 
 std::vector<Ray> grid_rays(int n) {
   std::vector<Ray> rays;

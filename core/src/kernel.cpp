@@ -41,18 +41,18 @@ Impl make_impl(const Accel& a, KernelKind kind, const KernelOptions& o) {
     case KernelKind::embree_restart: return EmbreeRestartKernel(a.embree(), o.order);
     case KernelKind::embree_filter: return EmbreeFilterKernel(a.embree(), o.order);
     case KernelKind::embree_nodecull: return EmbreeNodeCullKernel(a.embree(), o.order);
-    case KernelKind::restart: return RestartKernel<float>(a.bvh(), o.order);
-    case KernelKind::queue: return QueueKernel<float>(a.bvh(), o.order);
-    case KernelKind::nodecull: return NodeCullKernel<float>(a.bvh(), o.order);
-    case KernelKind::filter: return AllHitsKernel<float>(a.bvh(), o.order);
-    case KernelKind::buffered: return BufferedKernel<float>(a.bvh(), o.order);
-    case KernelKind::restart_d: return RestartKernel<double>(a.bvh_double(), o.order);
-    case KernelKind::queue_d: return QueueKernel<double>(a.bvh_double(), o.order);
-    case KernelKind::nodecull_d: return NodeCullKernel<double>(a.bvh_double(), o.order);
-    case KernelKind::filter_d: return AllHitsKernel<double>(a.bvh_double(), o.order);
-    case KernelKind::buffered_d: return BufferedKernel<double>(a.bvh_double(), o.order);
+    case KernelKind::restart: return RestartKernel<float>(a.wide(), o.order);
+    case KernelKind::queue: return QueueKernel<float>(a.wide(), o.order);
+    case KernelKind::nodecull: return NodeCullKernel<float>(a.wide(), o.order);
+    case KernelKind::filter: return AllHitsKernel<float>(a.wide(), o.order);
+    case KernelKind::buffered: return BufferedKernel<float>(a.wide(), o.order);
+    case KernelKind::restart_d: return RestartKernel<double>(a.wide_double(), o.order);
+    case KernelKind::queue_d: return QueueKernel<double>(a.wide_double(), o.order);
+    case KernelKind::nodecull_d: return NodeCullKernel<double>(a.wide_double(), o.order);
+    case KernelKind::filter_d: return AllHitsKernel<double>(a.wide_double(), o.order);
+    case KernelKind::buffered_d: return BufferedKernel<double>(a.wide_double(), o.order);
   }
-  return RestartKernel<float>(a.bvh(), o.order);
+  return RestartKernel<float>(a.wide(), o.order);
 }
 }  // namespace
 
@@ -79,19 +79,35 @@ std::optional<KernelKind> parse_kernel(std::string_view name) {
   return std::nullopt;
 }
 
-struct Accel::LazyBvhd {
-  std::once_flag once;
-  Bvhd bvh;
+struct Accel::Lazy {
+  std::once_flag embree_once, bvh_double_once, wide_double_once;
+  std::unique_ptr<EmbreeAccel> embree;
+  Bvhd bvh_double;
+  WideBvhd wide_double;
 };
 
 Accel::Accel(const Scene& scene)
-    : scene_(&scene), bvh_(build_bvh<float>(scene)), bvhd_(std::make_shared<LazyBvhd>()) {
-  embree_ = std::make_unique<EmbreeAccel>(scene, bvh_.tris);
+    : scene_(&scene), bvh_(build_bvh<float>(scene)), wide_(build_wide_bvh(bvh_)), lazy_(std::make_unique<Lazy>()) {}
+
+Accel::~Accel() = default;
+
+const EmbreeAccel& Accel::embree() const {
+  std::call_once(lazy_->embree_once, [this] { lazy_->embree = std::make_unique<EmbreeAccel>(*scene_, bvh_.tris); });
+  return *lazy_->embree;
 }
 
 const Bvhd& Accel::bvh_double() const {
-  std::call_once(bvhd_->once, [this] { bvhd_->bvh = build_bvh<double>(*scene_); });
-  return bvhd_->bvh;
+  std::call_once(lazy_->bvh_double_once, [this] { lazy_->bvh_double = build_bvh<double>(*scene_); });
+  return lazy_->bvh_double;
+}
+
+const WideBvhd& Accel::wide_double() const {
+  std::call_once(lazy_->wide_double_once, [this] { lazy_->wide_double = build_wide_bvh(bvh_double()); });
+  return lazy_->wide_double;
+}
+
+std::size_t Accel::memory_bytes() const {
+  return bvh_.memory_bytes() + wide_.memory_bytes() + lazy_->bvh_double.memory_bytes() + lazy_->wide_double.memory_bytes();
 }
 
 std::string unsupported_reason(const Accel& accel, KernelKind kind) {

@@ -14,6 +14,7 @@
 
 #include "pierce/generators.h"
 #include "pierce/kernel.h"
+#include "pierce/kernels/bvh_common.h"
 
 namespace pierce::test {
 

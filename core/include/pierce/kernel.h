@@ -15,6 +15,7 @@
 #include "pierce/kernels/node_cull.h"
 #include "pierce/kernels/queue.h"
 #include "pierce/kernels/restart.h"
+#include "pierce/wide_bvh.h"
 
 namespace pierce {
 
@@ -66,26 +67,35 @@ struct KernelOptions {
   double epsilon_rel = 1e-5;  // epsilon kernel only: relative to the scene diagonal
 };
 
-// A scene with every acceleration structure the kernels need: Pierce's BVH (float) and
-// Embree's scenes over the same triangles.
+// A scene with the acceleration structures the kernels need, each built on first use
+// (thread-safe): Pierce's wide BVH in float (built with the Accel, since every Pierce kernel and
+// query uses it), the double one for the *_d kernels, and Embree's scenes for the embree-* and
+// epsilon kernels. So a run of an own-BVH kernel builds no Embree scene and no double BVH.
 class Accel {
  public:
   explicit Accel(const Scene& scene);
+  ~Accel();
   // Neither copyable nor movable: the Embree scenes keep pointers to bvh_'s triangles.
   Accel(const Accel&) = delete;
   Accel& operator=(const Accel&) = delete;
   const Scene& scene() const { return *scene_; }
+  // The binary BVH the wide one is collapsed from (closest-point queries and origin offsets).
   const Bvhf& bvh() const { return bvh_; }
-  const EmbreeAccel& embree() const { return *embree_; }
-  // Double-precision BVH, built on the first call (thread-safe); the *_d kernels use it.
+  const WideBvhf& wide() const { return wide_; }
+  const EmbreeAccel& embree() const;
+  // Double-precision BVHs, built on the first call: the binary one (CSG's box queries) and the
+  // wide one collapsed from it (the *_d kernels).
   const Bvhd& bvh_double() const;
+  const WideBvhd& wide_double() const;
+  // Bytes held by the structures built so far.
+  std::size_t memory_bytes() const;
 
  private:
-  struct LazyBvhd;
+  struct Lazy;
   const Scene* scene_;
   Bvhf bvh_;
-  std::unique_ptr<EmbreeAccel> embree_;
-  std::shared_ptr<LazyBvhd> bvhd_;
+  WideBvhf wide_;
+  std::unique_ptr<Lazy> lazy_;
 };
 
 // One kernel instance; reusable across rays (no allocation once warm). Not thread-safe:

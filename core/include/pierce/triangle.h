@@ -50,11 +50,32 @@ inline bool lex_less(const Vec3<T>& a, const Vec3<T>& b) {
 
 }  // namespace detail
 
+// The order in which a triangle's three per-vertex terms are summed: its corners sorted by
+// position (lexicographically), independent of their order in the triangle. Two triangles over
+// the same three points (a face shared by touching solids, a duplicated face, either winding)
+// then get bit-identical det and t, since reordering or reversing the corners only permutes the
+// terms and negates them exactly. A property of the triangle, not of the ray: BVH leaves store it.
+struct SumOrder {
+  std::uint8_t o[3] = {0, 1, 2};
+};
+
+template <typename T>
+inline SumOrder sum_order(const Vec3<T>& p0, const Vec3<T>& p1, const Vec3<T>& p2) {
+  const Vec3<T>* p[3] = {&p0, &p1, &p2};
+  SumOrder s;
+  std::uint8_t* o = s.o;
+  if (detail::lex_less(*p[o[1]], *p[o[0]])) std::swap(o[0], o[1]);
+  if (detail::lex_less(*p[o[2]], *p[o[1]])) std::swap(o[1], o[2]);
+  if (detail::lex_less(*p[o[1]], *p[o[0]])) std::swap(o[0], o[1]);
+  return s;
+}
+
 // Returns true and fills `out` on a hit with t in [tlo, thi]. The reported t is clamped into
 // the triangle's own slab interval so that every box containing the triangle contains t.
+// `so` must be sum_order(p0, p1, p2).
 template <typename T>
-inline bool intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const Vec3<T>& p1, const Vec3<T>& p2, T tlo,
-                      T thi, TriangleHit<T>& out) {
+inline bool intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const Vec3<T>& p1, const Vec3<T>& p2,
+                      SumOrder so, T tlo, T thi, TriangleHit<T>& out) {
   const Vec3<T> a = p0 - r.org, b = p1 - r.org, c = p2 - r.org;
   const T ax = a[r.kx] - r.sx * a[r.kz], ay = a[r.ky] - r.sy * a[r.kz];
   const T bx = b[r.kx] - r.sx * b[r.kz], by = b[r.ky] - r.sy * b[r.kz];
@@ -100,16 +121,9 @@ inline bool intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const Vec3<T>
   fix(U, su), fix(V, sv), fix(W, sw);
 
   const T az = r.sz * a[r.kz], bz = r.sz * b[r.kz], cz = r.sz * c[r.kz];
-  // Sum the per-vertex terms in an order fixed by the vertices' positions, not by their order in
-  // the triangle: two triangles over the same three points (a face shared by touching solids, a
-  // duplicated face, either winding) then get bit-identical det and t, since reordering or
-  // reversing the corners only permutes the terms and negates them exactly.
+  // Sum the per-vertex terms in the triangle's SumOrder (see there).
   const T w[3] = {U, V, W}, z[3] = {az, bz, cz};
-  const Vec3<T>* p[3] = {&p0, &p1, &p2};
-  int o[3] = {0, 1, 2};
-  if (detail::lex_less(*p[o[1]], *p[o[0]])) std::swap(o[0], o[1]);
-  if (detail::lex_less(*p[o[2]], *p[o[1]])) std::swap(o[1], o[2]);
-  if (detail::lex_less(*p[o[1]], *p[o[0]])) std::swap(o[0], o[1]);
+  const std::uint8_t* o = so.o;
   const T det = (w[o[0]] + w[o[1]]) + w[o[2]];
   if (det == T(0)) return false;  // ray lies in the triangle's plane
   const T inv_det = T(1) / det;
@@ -139,6 +153,12 @@ inline bool intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const Vec3<T>
   out.v = W * inv_det;
   out.enter = det > T(0);
   return true;
+}
+
+template <typename T>
+inline bool intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const Vec3<T>& p1, const Vec3<T>& p2, T tlo,
+                      T thi, TriangleHit<T>& out) {
+  return intersect(r, p0, p1, p2, sum_order(p0, p1, p2), tlo, thi, out);
 }
 
 }  // namespace pierce

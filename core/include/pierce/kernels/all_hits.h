@@ -4,42 +4,27 @@
 #include <algorithm>
 #include <vector>
 
-#include "pierce/kernels/bvh_common.h"
+#include "pierce/hit.h"
+#include "pierce/traverse.h"
 
 namespace pierce {
 
 template <typename T>
 class AllHitsKernel {
  public:
-  explicit AllHitsKernel(const Bvh<T>& bvh, HitOrder order = {}) : bvh_(&bvh), order_(order) {}
+  explicit AllHitsKernel(const WideBvh<T>& bvh, HitOrder order = {})
+      : bvh_(&bvh), order_(order), simd_(simd_level()) {
+    stack_.reserve(bvh.stack_capacity());
+  }
 
   void begin(const Ray& ray, std::size_t /*max_hits*/ = 0) {
     const TraversalRay<T> r = TraversalRay<T>::make(ray, bvh_->scene_max_abs);
     hits_.clear();
     pos_ = 0;
-    if (bvh_->empty() || !r.valid()) return;
     stack_.clear();
-    const Span<T> root = slab(r, bvh_->nodes[0].box.lo, bvh_->nodes[0].box.hi);
-    PIERCE_COUNT(counters, node_tests, 1);
-    if (box_overlaps(r, root, r.tmin, r.tmax)) stack_.push_back(0);
-    while (!stack_.empty()) {
-      const BvhNode<T>& n = bvh_->nodes[stack_.back()];
-      stack_.pop_back();
-      PIERCE_COUNT(counters, traversal_steps, 1);
-      PIERCE_COUNT(counters, leaf_visits, n.is_leaf() ? 1 : 0);
-      if (!n.is_leaf()) {
-        visit_children(*bvh_, n, r, r.tmin, r.tmax, counters, [&](std::uint32_t c, T) { stack_.push_back(c); });
-        continue;
-      }
-      for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
-        const Triangle<T>& tri = bvh_->tris[i];
-        TriangleHit<T> th;
-        PIERCE_COUNT(counters, prim_tests, 1);
-        if (!intersect(r, tri.v0, tri.v1, tri.v2, r.tmin, r.tmax, th)) continue;
-        PIERCE_COUNT(counters, valid_hits, 1);
-        hits_.push_back(make_hit(tri, th));
-      }
-    }
+    seed(*bvh_, r, r.tmin, r.tmax, stack_, counters);
+    Gather p{r, hits_};
+    traverse(simd_, *bvh_, r, stack_, p, counters);
     std::sort(hits_.begin(), hits_.end(), order_);
   }
 
@@ -52,9 +37,20 @@ class AllHitsKernel {
   Counters counters;
 
  private:
-  const Bvh<T>* bvh_;
+  struct Gather : TraversalPolicy<T> {
+    const TraversalRay<T>& r;
+    std::vector<Hit>& hits;
+    Gather(const TraversalRay<T>& ray, std::vector<Hit>& out) : r(ray), hits(out) {}
+    T lo() const { return r.tmin; }
+    T hi() const { return r.tmax; }
+    T cull_bound() const { return r.tmax; }
+    void hit(const TriBlock<T>& b, int l, const TriangleHit<T>& h) { hits.push_back(make_hit(b, l, h)); }
+  };
+
+  const WideBvh<T>* bvh_;
   HitOrder order_;
-  std::vector<std::uint32_t> stack_;
+  SimdLevel simd_;
+  NodeStack<T> stack_;
   std::vector<Hit> hits_;
   std::size_t pos_ = 0;
 };

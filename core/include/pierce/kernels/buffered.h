@@ -9,16 +9,19 @@
 // Memory is bounded by the buffer; the caller can stop at any hit (early exit).
 #include <array>
 #include <limits>
-#include <vector>
 
-#include "pierce/kernels/bvh_common.h"
+#include "pierce/hit.h"
+#include "pierce/traverse.h"
 
 namespace pierce {
 
 template <typename T, std::size_t Capacity = 16>
 class BufferedKernel {
  public:
-  explicit BufferedKernel(const Bvh<T>& bvh, HitOrder order = {}) : bvh_(&bvh), order_(order) {}
+  explicit BufferedKernel(const WideBvh<T>& bvh, HitOrder order = {})
+      : bvh_(&bvh), order_(order), simd_(simd_level()) {
+    stack_.reserve(bvh.stack_capacity());
+  }
 
   void begin(const Ray& ray, std::size_t /*max_hits*/ = 0) {
     ray_ = TraversalRay<T>::make(ray, bvh_->scene_max_abs);
@@ -27,8 +30,9 @@ class BufferedKernel {
   }
 
   bool next(Hit& out) {
+    Buffer p{*this};
     for (;;) {
-      if (size_ > 0 && buf_[0].t < double(stack_min_tn())) {
+      if (size_ > 0 && buf_[0].t < double(stack_.min_tn())) {
         out = buf_[0];
         for (std::size_t i = 1; i < size_; ++i) buf_[i - 1] = buf_[i];
         --size_;
@@ -41,22 +45,42 @@ class BufferedKernel {
         start_pass();  // hits were dropped: resume after the last released hit
         continue;
       }
-      step();
+      traverse(simd_, *bvh_, ray_, stack_, p, counters);  // until a hit is resolved or nothing is left
     }
   }
 
   Counters counters;
 
  private:
+  struct Buffer : TraversalPolicy<T> {
+    static constexpr bool kCullsInRange = true;
+    BufferedKernel& k;
+    explicit Buffer(BufferedKernel& kernel) : k(kernel) {}
+    T lo() const { return k.lower(); }
+    T hi() const { return k.ray_.tmax; }
+    // A node entered beyond it would only add hits that fall off the full buffer or lie past the
+    // cut: it is needed by a later pass.
+    T cull_bound() const { return k.upper(); }
+    void culled(T tn) { k.lose(node_key(tn)); }
+    template <class Pending>
+    bool suspend(T next_tn, const Pending& pending) const {
+      if (k.size_ == 0) return false;
+      const T m = pending.min_tn();
+      return k.buf_[0].t < double(next_tn < m ? next_tn : m);
+    }
+    void hit(const TriBlock<T>& b, int l, const TriangleHit<T>& h) {
+      const Hit key = order_key(b, l, h);
+      if (k.have_last_ && !k.order_.less(k.last_, key)) return;
+      k.insert(key, b, l, h);
+    }
+  };
+
   void start_pass() {
     size_ = 0;
     truncated_ = false;
     have_cut_ = false;
     stack_.clear();
-    if (bvh_->empty() || !ray_.valid()) return;
-    const Span<T> root = slab(ray_, bvh_->nodes[0].box.lo, bvh_->nodes[0].box.hi);
-    PIERCE_COUNT(counters, node_tests, 1);
-    if (box_overlaps(ray_, root, lower(), ray_.tmax)) stack_.push_back({root.tn, 0});
+    seed(*bvh_, ray_, lower(), ray_.tmax, stack_, counters);
   }
 
   T lower() const { return have_last_ ? std::max(ray_.tmin, T(last_.t)) : ray_.tmin; }
@@ -74,47 +98,8 @@ class BufferedKernel {
     h.t = double(tn), h.geom = 0, h.prim = 0, h.enter = false;
     return h;
   }
-  T stack_min_tn() const {
-    T m = std::numeric_limits<T>::infinity();
-    for (const auto& e : stack_) m = e.tn < m ? e.tn : m;
-    return m;
-  }
 
-  void step() {
-    const NodeEntry<T> e = stack_.back();
-    stack_.pop_back();
-    if (e.tn > upper()) {  // everything in it would fall off the full buffer or lie past the cut
-      lose(node_key(e.tn));
-      return;
-    }
-    PIERCE_COUNT(counters, traversal_steps, 1);
-    const BvhNode<T>& n = bvh_->nodes[e.node];
-    PIERCE_COUNT(counters, leaf_visits, n.is_leaf() ? 1 : 0);
-    if (!n.is_leaf()) {
-      const T up = upper();
-      visit_children(*bvh_, n, ray_, lower(), ray_.tmax, counters, [&](std::uint32_t c, T tn) {
-        if (tn > up) {
-          lose(node_key(tn));  // skipped only because the buffer is full: needed by a later pass
-        } else {
-          stack_.push_back({tn, c});
-        }
-      });
-      return;
-    }
-    const T lo = lower();
-    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
-      const Triangle<T>& tri = bvh_->tris[i];
-      TriangleHit<T> th;
-      PIERCE_COUNT(counters, prim_tests, 1);
-      if (!intersect(ray_, tri.v0, tri.v1, tri.v2, lo, ray_.tmax, th)) continue;
-      PIERCE_COUNT(counters, valid_hits, 1);
-      const Hit key = order_key(tri, th);
-      if (have_last_ && !order_.less(last_, key)) continue;
-      insert(key, tri, th);
-    }
-  }
-
-  void insert(const Hit& key, const Triangle<T>& tri, const TriangleHit<T>& th) {
+  void insert(const Hit& key, const TriBlock<T>& b, int lane, const TriangleHit<T>& th) {
     // At or past the cut it could be released before a lost hit that ranks first: a later pass finds it.
     if (have_cut_ && !order_.less(key, cut_)) return;
     if (size_ == Capacity) {
@@ -127,12 +112,13 @@ class BufferedKernel {
       buf_[i] = buf_[i - 1];
       --i;
     }
-    buf_[i] = make_hit(tri, th);
+    buf_[i] = make_hit(b, lane, th);
     ++size_;
   }
 
-  const Bvh<T>* bvh_;
+  const WideBvh<T>* bvh_;
   HitOrder order_;
+  SimdLevel simd_;
   TraversalRay<T> ray_;
   std::array<Hit, Capacity> buf_{};
   std::size_t size_ = 0;
@@ -141,7 +127,7 @@ class BufferedKernel {
   bool have_cut_ = false;
   Hit last_;
   bool have_last_ = false;
-  std::vector<NodeEntry<T>> stack_;
+  NodeStack<T> stack_;
 };
 
 }  // namespace pierce

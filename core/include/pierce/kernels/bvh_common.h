@@ -1,5 +1,6 @@
 #pragma once
-// Pieces shared by the kernels on Pierce's own BVH.
+// Hit records for a float/double triangle (the Embree-based kernels; the wide-BVH kernels use
+// the leaf-block versions in traverse.h).
 #include <limits>
 
 #include "pierce/bvh.h"
@@ -31,36 +32,6 @@ inline Hit order_key(const Triangle<T>& tri, const TriangleHit<T>& th) {
   h.prim = tri.prim;
   h.enter = th.enter;
   return h;
-}
-
-template <typename T>
-struct NodeEntry {
-  T tn;  // entry distance of the node
-  std::uint32_t node;
-};
-
-// Tests both children of an inner node against [lo, hi]; calls visit(child, tn) farthest first,
-// so that a stack pops the nearer child next.
-template <typename T, typename Visit>
-inline void visit_children(const Bvh<T>& bvh, const BvhNode<T>& n, const TraversalRay<T>& r, T lo, T hi,
-                           Counters& c, Visit&& visit) {
-  const std::uint32_t a = n.first, b = n.first + 1;
-  const Span<T> sa = slab(r, bvh.nodes[a].box.lo, bvh.nodes[a].box.hi);
-  const Span<T> sb = slab(r, bvh.nodes[b].box.lo, bvh.nodes[b].box.hi);
-  PIERCE_COUNT(c, node_tests, 2);
-  (void)c;
-  const bool ha = box_overlaps(r, sa, lo, hi), hb = box_overlaps(r, sb, lo, hi);
-  if (ha && hb) {
-    if (sb.tn < sa.tn) {
-      visit(a, sa.tn), visit(b, sb.tn);
-    } else {
-      visit(b, sb.tn), visit(a, sa.tn);
-    }
-  } else if (ha) {
-    visit(a, sa.tn);
-  } else if (hb) {
-    visit(b, sb.tn);
-  }
 }
 
 }  // namespace pierce

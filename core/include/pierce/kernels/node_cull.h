@@ -7,14 +7,18 @@
 #include <limits>
 #include <vector>
 
-#include "pierce/kernels/bvh_common.h"
+#include "pierce/hit.h"
+#include "pierce/traverse.h"
 
 namespace pierce {
 
 template <typename T>
 class NodeCullKernel {
  public:
-  explicit NodeCullKernel(const Bvh<T>& bvh, HitOrder order = {}) : bvh_(&bvh), order_(order) {}
+  explicit NodeCullKernel(const WideBvh<T>& bvh, HitOrder order = {})
+      : bvh_(&bvh), order_(order), simd_(simd_level()) {
+    stack_.reserve(bvh.stack_capacity());
+  }
 
   void begin(const Ray& ray, std::size_t max_hits = 0) {
     ray_ = TraversalRay<T>::make(ray, bvh_->scene_max_abs);
@@ -46,51 +50,42 @@ class NodeCullKernel {
     bool operator()(const Hit& a, const Hit& b) const { return order.less(a, b); }
   };
 
+  // The N closest after last_; once N are held, hi() is the N-th and culls farther nodes.
+  struct Closest : TraversalPolicy<T> {
+    NodeCullKernel& k;
+    T lo_;
+    Closest(NodeCullKernel& kernel, T lo) : k(kernel), lo_(lo) {}
+    T lo() const { return lo_; }
+    T hi() const { return k.batch_.size() == k.n_ ? T(k.batch_.front().t) : k.ray_.tmax; }
+    T cull_bound() const { return hi(); }
+    void hit(const TriBlock<T>& b, int l, const TriangleHit<T>& h) {
+      const HitBefore before{k.order_};
+      const Hit key = order_key(b, l, h);
+      if (k.have_last_ && !k.order_.less(k.last_, key)) return;
+      if (k.batch_.size() == k.n_) {
+        if (!k.order_.less(key, k.batch_.front())) return;
+        std::pop_heap(k.batch_.begin(), k.batch_.end(), before);  // max-heap: front is the N-th hit
+        k.batch_.pop_back();
+      }
+      k.batch_.push_back(make_hit(b, l, h));
+      std::push_heap(k.batch_.begin(), k.batch_.end(), before);
+    }
+  };
+
   // The n_ closest hits after last_ into batch_, sorted.
   void collect() {
     batch_.clear();
     pos_ = 0;
-    const HitBefore before{order_};
-    const T lo = have_last_ ? std::max(ray_.tmin, T(last_.t)) : ray_.tmin;
-    auto hi = [&] { return batch_.size() == n_ ? T(batch_.front().t) : ray_.tmax; };
+    Closest p{*this, have_last_ ? std::max(ray_.tmin, T(last_.t)) : ray_.tmin};
     stack_.clear();
-    const Span<T> root = slab(ray_, bvh_->nodes[0].box.lo, bvh_->nodes[0].box.hi);
-    PIERCE_COUNT(counters, node_tests, 1);
-    if (box_overlaps(ray_, root, lo, ray_.tmax)) stack_.push_back({root.tn, 0});
-    while (!stack_.empty()) {
-      const NodeEntry<T> e = stack_.back();
-      stack_.pop_back();
-      if (e.tn > hi()) continue;  // node culling
-      PIERCE_COUNT(counters, traversal_steps, 1);
-      const BvhNode<T>& n = bvh_->nodes[e.node];
-      PIERCE_COUNT(counters, leaf_visits, n.is_leaf() ? 1 : 0);
-      if (!n.is_leaf()) {
-        visit_children(*bvh_, n, ray_, lo, hi(), counters,
-                       [&](std::uint32_t c, T tn) { stack_.push_back({tn, c}); });
-        continue;
-      }
-      for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
-        const Triangle<T>& tri = bvh_->tris[i];
-        TriangleHit<T> th;
-        PIERCE_COUNT(counters, prim_tests, 1);
-        if (!intersect(ray_, tri.v0, tri.v1, tri.v2, lo, hi(), th)) continue;
-        PIERCE_COUNT(counters, valid_hits, 1);
-        const Hit key = order_key(tri, th);
-        if (have_last_ && !order_.less(last_, key)) continue;
-        if (batch_.size() == n_) {
-          if (!order_.less(key, batch_.front())) continue;
-          std::pop_heap(batch_.begin(), batch_.end(), before);  // max-heap: front is the N-th hit
-          batch_.pop_back();
-        }
-        batch_.push_back(make_hit(tri, th));
-        std::push_heap(batch_.begin(), batch_.end(), before);
-      }
-    }
-    std::sort_heap(batch_.begin(), batch_.end(), before);
+    seed(*bvh_, ray_, p.lo(), ray_.tmax, stack_, counters);
+    traverse(simd_, *bvh_, ray_, stack_, p, counters);
+    std::sort_heap(batch_.begin(), batch_.end(), HitBefore{order_});
   }
 
-  const Bvh<T>* bvh_;
+  const WideBvh<T>* bvh_;
   HitOrder order_;
+  SimdLevel simd_;
   TraversalRay<T> ray_;
   std::size_t n_ = 0;
   std::vector<Hit> batch_;
@@ -98,7 +93,7 @@ class NodeCullKernel {
   Hit last_;
   bool have_last_ = false;
   bool exhausted_ = true;
-  std::vector<NodeEntry<T>> stack_;
+  NodeStack<T> stack_;
 };
 
 }  // namespace pierce

@@ -5,77 +5,73 @@
 #include <algorithm>
 #include <vector>
 
-#include "pierce/kernels/bvh_common.h"
+#include "pierce/hit.h"
+#include "pierce/traverse.h"
 
 namespace pierce {
 
 template <typename T>
 class QueueKernel {
  public:
-  explicit QueueKernel(const Bvh<T>& bvh, HitOrder order = {}) : bvh_(&bvh), order_(order) {}
+  explicit QueueKernel(const WideBvh<T>& bvh, HitOrder order = {})
+      : bvh_(&bvh), order_(order), simd_(simd_level()) {
+    nodes_.reserve(4 * bvh.stack_capacity());
+    hits_.reserve(16);
+  }
 
   void begin(const Ray& ray, std::size_t /*max_hits*/ = 0) {
     ray_ = TraversalRay<T>::make(ray, bvh_->scene_max_abs);
     nodes_.clear();
     hits_.clear();
-    if (bvh_->empty() || !ray_.valid()) return;
-    const Span<T> root = slab(ray_, bvh_->nodes[0].box.lo, bvh_->nodes[0].box.hi);
-    PIERCE_COUNT(counters, node_tests, 1);
-    if (box_overlaps(ray_, root, ray_.tmin, ray_.tmax)) push_node({root.tn, 0});
+    seed(*bvh_, ray_, ray_.tmin, ray_.tmax, nodes_, counters);
   }
 
   bool next(Hit& out) {
+    Gather p{*this};
     for (;;) {
       // Strict: a node entered at exactly the hit's t may still hold a hit that ranks first.
-      if (!hits_.empty() && (nodes_.empty() || hits_.front().t < double(nodes_.front().tn))) {
+      if (!hits_.empty() && (nodes_.empty() || hits_.front().t < double(nodes_.next_tn()))) {
         std::pop_heap(hits_.begin(), hits_.end(), hit_after_);
         out = hits_.back();
         hits_.pop_back();
         return true;
       }
       if (nodes_.empty()) return false;
-      std::pop_heap(nodes_.begin(), nodes_.end(), node_after);
-      const std::uint32_t ni = nodes_.back().node;
-      nodes_.pop_back();
-      PIERCE_COUNT(counters, traversal_steps, 1);
-      const BvhNode<T>& n = bvh_->nodes[ni];
-      PIERCE_COUNT(counters, leaf_visits, n.is_leaf() ? 1 : 0);
-      if (!n.is_leaf()) {
-        visit_children(*bvh_, n, ray_, ray_.tmin, ray_.tmax, counters,
-                       [&](std::uint32_t c, T tn) { push_node({tn, c}); });
-        continue;
-      }
-      for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
-        const Triangle<T>& tri = bvh_->tris[i];
-        TriangleHit<T> th;
-        PIERCE_COUNT(counters, prim_tests, 1);
-        if (!intersect(ray_, tri.v0, tri.v1, tri.v2, ray_.tmin, ray_.tmax, th)) continue;
-        PIERCE_COUNT(counters, valid_hits, 1);
-        hits_.push_back(make_hit(tri, th));
-        std::push_heap(hits_.begin(), hits_.end(), hit_after_);
-      }
+      traverse(simd_, *bvh_, ray_, nodes_, p, counters);  // until a hit is ready or nothing is left
     }
   }
 
   Counters counters;
 
  private:
-  static bool node_after(const NodeEntry<T>& a, const NodeEntry<T>& b) { return a.tn > b.tn; }
   struct HitAfter {
     HitOrder order;
     bool operator()(const Hit& a, const Hit& b) const { return order.less(b, a); }
   };
-  void push_node(NodeEntry<T> e) {
-    nodes_.push_back(e);
-    std::push_heap(nodes_.begin(), nodes_.end(), node_after);
-  }
+  // Every hit goes into the hit heap; traversal stops once the closest one is safe to return.
+  struct Gather : TraversalPolicy<T> {
+    QueueKernel& k;
+    explicit Gather(QueueKernel& kernel) : k(kernel) {}
+    T lo() const { return k.ray_.tmin; }
+    T hi() const { return k.ray_.tmax; }
+    T cull_bound() const { return k.ray_.tmax; }
+    template <class Pending>
+    bool suspend(T next_tn, const Pending&) const {
+      return !k.hits_.empty() && k.hits_.front().t < double(next_tn);
+    }
+    void hit(const TriBlock<T>& b, int l, const TriangleHit<T>& h) {
+      k.hits_.push_back(make_hit(b, l, h));
+      std::push_heap(k.hits_.begin(), k.hits_.end(), k.hit_after_);
+    }
+  };
 
-  const Bvh<T>* bvh_;
+  const WideBvh<T>* bvh_;
   HitOrder order_;
   HitAfter hit_after_{order_};
+  SimdLevel simd_;
   TraversalRay<T> ray_;
-  std::vector<NodeEntry<T>> nodes_;  // min-heap on tn
-  std::vector<Hit> hits_;            // min-heap in hit order
+  NodeHeap<T> nodes_;
+  std::vector<Hit> hits_;  // min-heap in hit order
 };
 
 }  // namespace pierce

@@ -1,16 +1,18 @@
 #pragma once
 // `restart` (Wald et al. §3): each next() is a closest-hit query for the first hit after
 // the last one in the total order. No epsilon: ties at equal t are resolved by (geom, prim).
-#include <vector>
-
-#include "pierce/kernels/bvh_common.h"
+#include "pierce/hit.h"
+#include "pierce/traverse.h"
 
 namespace pierce {
 
 template <typename T>
 class RestartKernel {
  public:
-  explicit RestartKernel(const Bvh<T>& bvh, HitOrder order = {}) : bvh_(&bvh), order_(order) {}
+  explicit RestartKernel(const WideBvh<T>& bvh, HitOrder order = {})
+      : bvh_(&bvh), order_(order), simd_(simd_level()) {
+    stack_.reserve(bvh.stack_capacity());
+  }
 
   void begin(const Ray& ray, std::size_t /*max_hits*/ = 0) {
     ray_ = TraversalRay<T>::make(ray, bvh_->scene_max_abs);
@@ -19,55 +21,47 @@ class RestartKernel {
 
   bool next(Hit& out) {
     if (bvh_->empty() || !ray_.valid()) return false;
-    Hit best;
-    T lo = ray_.tmin;
-    if (have_last_) lo = std::max(lo, T(last_.t));
-    T hi = ray_.tmax;
+    Closest p{*this, have_last_ ? std::max(ray_.tmin, T(last_.t)) : ray_.tmin, ray_.tmax};
     stack_.clear();
-    const Span<T> root = slab(ray_, bvh_->nodes[0].box.lo, bvh_->nodes[0].box.hi);
-    PIERCE_COUNT(counters, node_tests, 1);
-    if (box_overlaps(ray_, root, lo, hi)) stack_.push_back({root.tn, 0});
-    while (!stack_.empty()) {
-      const NodeEntry<T> e = stack_.back();
-      stack_.pop_back();
-      if (e.tn > hi) continue;  // culled by the current closest hit
-      PIERCE_COUNT(counters, traversal_steps, 1);
-      const BvhNode<T>& n = bvh_->nodes[e.node];
-      PIERCE_COUNT(counters, leaf_visits, n.is_leaf() ? 1 : 0);
-      if (!n.is_leaf()) {
-        visit_children(*bvh_, n, ray_, lo, hi, counters,
-                       [&](std::uint32_t c, T tn) { stack_.push_back({tn, c}); });
-        continue;
-      }
-      for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
-        const Triangle<T>& tri = bvh_->tris[i];
-        TriangleHit<T> th;
-        PIERCE_COUNT(counters, prim_tests, 1);
-        if (!intersect(ray_, tri.v0, tri.v1, tri.v2, lo, hi, th)) continue;
-        PIERCE_COUNT(counters, valid_hits, 1);
-        const Hit key = order_key(tri, th);
-        if (have_last_ && !order_.less(last_, key)) continue;
-        if (best.valid() && !order_.less(key, best)) continue;
-        best = make_hit(tri, th);
-        hi = th.t;
-      }
-    }
-    if (!best.valid()) return false;
-    last_ = best;
+    seed(*bvh_, ray_, p.lo_, p.hi_, stack_, counters);
+    traverse(simd_, *bvh_, ray_, stack_, p, counters);
+    if (p.block == nullptr) return false;
+    out = make_hit(*p.block, p.lane, p.th);
+    last_ = out;
     have_last_ = true;
-    out = best;
     return true;
   }
 
   Counters counters;
 
  private:
-  const Bvh<T>* bvh_;
+  // The closest hit after last_; hi shrinks to it, which culls farther nodes.
+  struct Closest : TraversalPolicy<T> {
+    const RestartKernel& k;
+    T lo_, hi_;
+    const TriBlock<T>* block = nullptr;
+    int lane = 0;
+    TriangleHit<T> th{};
+    Hit best;
+    Closest(const RestartKernel& kernel, T lo, T hi) : k(kernel), lo_(lo), hi_(hi) {}
+    T lo() const { return lo_; }
+    T hi() const { return hi_; }
+    T cull_bound() const { return hi_; }
+    void hit(const TriBlock<T>& b, int l, const TriangleHit<T>& h) {
+      const Hit key = order_key(b, l, h);
+      if (k.have_last_ && !k.order_.less(k.last_, key)) return;
+      if (block != nullptr && !k.order_.less(key, best)) return;
+      best = key, block = &b, lane = l, th = h, hi_ = h.t;
+    }
+  };
+
+  const WideBvh<T>* bvh_;
   HitOrder order_;
+  SimdLevel simd_;
   TraversalRay<T> ray_;
   Hit last_;
   bool have_last_ = false;
-  std::vector<NodeEntry<T>> stack_;
+  NodeStack<T> stack_;
 };
 
 }  // namespace pierce

@@ -1,0 +1,282 @@
+#pragma once
+// The one traversal of the wide BVH that every Pierce kernel runs (in the manner of
+// madmann91/bvh v2's traverse(leaf_fn, inner_fn)). What differs between kernels is a policy:
+//  - the container of untraversed nodes: NodeStack (depth first, near child first) or NodeHeap
+//    (front to back by entry distance, Wald et al. §4);
+//  - the active range [lo(), hi()] for box and triangle tests, and cull_bound(): a node entered
+//    beyond it is not traversed but reported to culled() (node culling, Gribble 2016; the
+//    buffered kernel keeps such nodes for a later pass);
+//  - suspend(next_tn, pending): stop before the next node, keeping the state (queue, buffered);
+//  - node(ref, tn): Gribble's every-node callback, called for each node traversed;
+//  - hit(block, lane, th): the leaf callback, called for every triangle the exact test accepts
+//    within the active range.
+// Policies derive from TraversalPolicy, which gives the defaults.
+//
+// The traversal is written once and compiled for each instruction-set level (simd_level.h):
+// traverse() picks the level's instantiation; the SIMD ones are compiled with the level's target
+// attribute and flattened, so the node and leaf tests inline into the loop.
+#include <cstdint>
+#include <limits>
+#include <type_traits>
+#include <vector>
+
+#include "pierce/counters.h"
+#include "pierce/simd/simd_level.h"
+#include "pierce/simd/wide_ops.h"
+#include "pierce/wide_bvh.h"
+
+namespace pierce {
+
+template <typename T>
+struct NodeEntry {
+  T tn;  // entry distance of the node
+  NodeRef ref;
+};
+
+// Depth-first pending nodes. Its capacity is reserved from the BVH's depth: no allocation per ray.
+template <typename T>
+class NodeStack {
+ public:
+  static constexpr bool kOrdered = false;
+  void reserve(std::size_t n) { v_.reserve(n); }
+  void clear() { v_.clear(); }
+  bool empty() const { return v_.empty(); }
+  void push(NodeEntry<T> e) { v_.push_back(e); }
+  NodeEntry<T> pop() {
+    const NodeEntry<T> e = v_.back();
+    v_.pop_back();
+    return e;
+  }
+  T next_tn() const { return v_.back().tn; }
+  T min_tn() const {
+    T m = std::numeric_limits<T>::infinity();
+    for (const auto& e : v_) m = e.tn < m ? e.tn : m;
+    return m;
+  }
+
+ private:
+  std::vector<NodeEntry<T>> v_;
+};
+
+// Pending nodes ordered by entry distance (a binary min-heap in a vector that keeps its capacity).
+template <typename T>
+class NodeHeap {
+ public:
+  static constexpr bool kOrdered = true;
+  void reserve(std::size_t n) { v_.reserve(n); }
+  void clear() { v_.clear(); }
+  bool empty() const { return v_.empty(); }
+  void push(NodeEntry<T> e) {
+    std::size_t i = v_.size();
+    v_.push_back(e);
+    while (i > 0) {
+      const std::size_t parent = (i - 1) / 2;
+      if (!(e.tn < v_[parent].tn)) break;
+      v_[i] = v_[parent];
+      i = parent;
+    }
+    v_[i] = e;
+  }
+  NodeEntry<T> pop() {
+    const NodeEntry<T> top = v_.front();
+    const NodeEntry<T> last = v_.back();
+    v_.pop_back();
+    const std::size_t n = v_.size();
+    if (n == 0) return top;
+    std::size_t i = 0;
+    for (;;) {
+      std::size_t c = 2 * i + 1;
+      if (c >= n) break;
+      if (c + 1 < n && v_[c + 1].tn < v_[c].tn) ++c;
+      if (!(v_[c].tn < last.tn)) break;
+      v_[i] = v_[c];
+      i = c;
+    }
+    v_[i] = last;
+    return top;
+  }
+  T next_tn() const { return v_.front().tn; }
+  T min_tn() const { return v_.empty() ? std::numeric_limits<T>::infinity() : v_.front().tn; }
+
+ private:
+  std::vector<NodeEntry<T>> v_;
+};
+
+template <typename T>
+struct TraversalPolicy {
+  // True if cull_bound() can be below hi(): children that pass the box test are then checked too.
+  static constexpr bool kCullsInRange = false;
+  void culled(T /*tn*/) {}
+  template <class Pending>
+  bool suspend(T /*next_tn*/, const Pending& /*pending*/) const {
+    return false;
+  }
+  void node(NodeRef /*ref*/, T /*tn*/) {}
+};
+
+// Pushes the root onto `pending` if the ray meets the scene's box within [lo, hi].
+template <typename T, class Pending>
+inline void seed(const WideBvh<T>& bvh, const TraversalRay<T>& r, T lo, T hi, Pending& pending, Counters& c) {
+  (void)c;
+  if (bvh.empty() || !r.valid()) return;
+  const Span<T> s = slab(r, bvh.bounds.lo, bvh.bounds.hi);
+  PIERCE_COUNT(c, node_tests, 1);
+  if (box_overlaps(r, s, lo, hi)) pending.push({s.tn, bvh.root});
+}
+
+template <typename T>
+inline int octant(const TraversalRay<T>& r) {
+  return (r.dir.x < 0 ? 1 : 0) | (r.dir.y < 0 ? 2 : 0) | (r.dir.z < 0 ? 4 : 0);
+}
+
+// The traversal loop with the node and leaf tests of `Ops`. Returns true when every pending node
+// is done, false when the policy suspended it (the next node is back on `pending`).
+template <class Ops, typename T, class Pending, class Policy>
+inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Pending& pending, Policy& p,
+                          Counters& c) {
+  (void)c;
+  const int oct = octant(r);
+  NodeEntry<T> cur{};
+  bool have = false;  // `cur` is a child descended into directly, not taken from `pending`
+  for (;;) {
+    if (!have) {
+      if (pending.empty()) return true;
+      if (p.suspend(pending.next_tn(), pending)) return false;
+      cur = pending.pop();
+    } else if (p.suspend(cur.tn, pending)) {
+      pending.push(cur);
+      return false;
+    }
+    have = false;
+    if (cur.tn > p.cull_bound()) {
+      p.culled(cur.tn);
+      continue;
+    }
+    PIERCE_COUNT(c, traversal_steps, 1);
+    p.node(cur.ref, cur.tn);
+
+    if (is_leaf(cur.ref)) {
+      PIERCE_COUNT(c, leaf_visits, 1);
+      const std::uint32_t first = leaf_first_block(cur.ref), end = first + leaf_block_count(cur.ref);
+      for (std::uint32_t b = first; b < end; ++b) {
+        const TriBlock<T>& blk = bvh.blocks[b];
+        std::uint32_t cand = Ops::tri_candidates(blk, r);
+        PIERCE_COUNT(c, prim_tests, std::uint64_t(__builtin_popcount(blk.valid)));
+        while (cand != 0) {
+          const int l = __builtin_ctz(cand);
+          cand &= cand - 1;
+          TriangleHit<T> th;
+          if (!intersect(r, blk.corner(0, l), blk.corner(1, l), blk.corner(2, l), blk.sum[l], p.lo(), p.hi(), th))
+            continue;
+          PIERCE_COUNT(c, valid_hits, 1);
+          p.hit(blk, l, th);
+        }
+      }
+      continue;
+    }
+
+    const WideNode<T>& n = bvh.nodes[cur.ref];
+    alignas(64) T tn[kWideArity];
+    std::uint32_t mask = Ops::node_hits(n, r, p.lo(), p.hi(), tn);
+    PIERCE_COUNT(c, node_tests, std::uint64_t(__builtin_popcount(n.valid)));
+    if constexpr (Policy::kCullsInRange) {
+      const T cull = p.cull_bound();
+      for (std::uint32_t m = mask; m != 0; m &= m - 1) {
+        const int s = __builtin_ctz(m);
+        if (tn[s] > cull) {
+          p.culled(tn[s]);
+          mask &= ~(1u << s);
+        }
+      }
+    }
+    if (mask == 0) continue;
+    if constexpr (Pending::kOrdered) {
+      // Descend into the nearest child directly unless a pending node is nearer still.
+      int nearest = __builtin_ctz(mask);
+      for (std::uint32_t m = mask & (mask - 1); m != 0; m &= m - 1) {
+        const int s = __builtin_ctz(m);
+        if (tn[s] < tn[nearest]) {
+          pending.push({tn[nearest], n.child[nearest]});
+          nearest = s;
+        } else {
+          pending.push({tn[s], n.child[s]});
+        }
+      }
+      cur = {tn[nearest], n.child[nearest]};
+      if (!pending.empty() && pending.next_tn() < cur.tn) {
+        pending.push(cur);
+        cur = pending.pop();
+      }
+    } else {
+      // Far to near in the octant's precomputed order, so the nearest child is descended into
+      // directly and the next nearest is popped first.
+      const std::uint32_t order = n.order[oct];
+      int nearest = -1;
+      for (int k = kWideArity - 1; k >= 0; --k) {
+        const int s = int(order >> (4 * k) & 15u);
+        if (!(mask >> s & 1u)) continue;
+        if (nearest >= 0) pending.push({tn[nearest], n.child[nearest]});
+        nearest = s;
+      }
+      cur = {tn[nearest], n.child[nearest]};
+    }
+    have = true;
+  }
+}
+
+namespace detail {
+
+template <typename T, class Pending, class Policy>
+__attribute__((target("avx2"), flatten)) bool traverse_avx2(const WideBvh<T>& bvh, const TraversalRay<T>& r,
+                                                            Pending& pending, Policy& p, Counters& c) {
+  return traverse_with<simd::Avx2Ops>(bvh, r, pending, p, c);
+}
+
+template <typename T, class Pending, class Policy>
+__attribute__((target(PIERCE_AVX512_TARGET), flatten)) bool traverse_avx512(const WideBvh<T>& bvh,
+                                                                            const TraversalRay<T>& r,
+                                                                            Pending& pending, Policy& p,
+                                                                            Counters& c) {
+  return traverse_with<simd::Avx512Ops>(bvh, r, pending, p, c);
+}
+
+}  // namespace detail
+
+// Runs the traversal at `level` (the SIMD paths exist for float; double runs the scalar one).
+template <typename T, class Pending, class Policy>
+inline bool traverse(SimdLevel level, const WideBvh<T>& bvh, const TraversalRay<T>& r, Pending& pending, Policy& p,
+                     Counters& c) {
+  if constexpr (std::is_same_v<T, float>) {
+    if (level == SimdLevel::avx512) return detail::traverse_avx512(bvh, r, pending, p, c);
+    if (level == SimdLevel::avx2) return detail::traverse_avx2(bvh, r, pending, p, c);
+  }
+  return traverse_with<simd::ScalarOps<T>>(bvh, r, pending, p, c);
+}
+
+// The hit record for a triangle of a leaf block; geometric normal from the stored corners.
+template <typename T>
+inline Hit make_hit(const TriBlock<T>& b, int lane, const TriangleHit<T>& th) {
+  Hit h;
+  h.t = double(th.t);
+  h.geom = b.geom[lane];
+  h.prim = b.prim[lane];
+  h.u = float(th.u);
+  h.v = float(th.v);
+  const Vec3<T> v0 = b.corner(0, lane);
+  h.ng = Vec3f(cross(b.corner(1, lane) - v0, b.corner(2, lane) - v0));
+  h.enter = th.enter;
+  return h;
+}
+
+// Everything HitOrder looks at, without the rest of the record.
+template <typename T>
+inline Hit order_key(const TriBlock<T>& b, int lane, const TriangleHit<T>& th) {
+  Hit h;
+  h.t = double(th.t);
+  h.geom = b.geom[lane];
+  h.prim = b.prim[lane];
+  h.enter = th.enter;
+  return h;
+}
+
+}  // namespace pierce

@@ -1,0 +1,88 @@
+#pragma once
+// 8-wide BVH in precision T, collapsed from the binary SAH BVH (Bvh<T>). Child boxes are stored
+// structure-of-arrays so one SIMD slab test covers all eight children; leaves are blocks of up to
+// eight triangles, also structure-of-arrays, with raw vertices (shared vertices stay bit-identical
+// to the input) and each triangle's SumOrder precomputed.
+//
+// The boxes are exactly the binary BVH's boxes (unions of float triangle boxes, no rounding), so
+// "triangle hit => every enclosing box hit" carries over from the binary tree unchanged.
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "pierce/bbox.h"
+#include "pierce/bvh.h"
+#include "pierce/hit.h"
+#include "pierce/triangle.h"
+
+namespace pierce {
+
+inline constexpr int kWideArity = 8;
+inline constexpr int kBlockLanes = 8;
+
+// A child reference: an inner node's index, or a leaf: `kLeafFlag | first_block << 6 | (blocks-1)`.
+using NodeRef = std::uint32_t;
+inline constexpr NodeRef kLeafFlag = 0x80000000u;
+inline constexpr std::uint32_t kMaxLeafBlocks = 64;
+inline constexpr std::uint32_t kMaxBlocks = 1u << 25;
+constexpr bool is_leaf(NodeRef r) { return (r & kLeafFlag) != 0; }
+constexpr std::uint32_t leaf_first_block(NodeRef r) { return (r & ~kLeafFlag) >> 6; }
+constexpr std::uint32_t leaf_block_count(NodeRef r) { return (r & 63u) + 1; }
+constexpr NodeRef make_leaf_ref(std::uint32_t first_block, std::uint32_t blocks) {
+  return kLeafFlag | first_block << 6 | (blocks - 1);
+}
+
+template <typename T>
+struct alignas(64) WideNode {
+  // Child boxes by axis and slot; unused slots hold the empty box (lo = +inf, hi = -inf) and are
+  // also masked out by `valid`, so they can never pass.
+  T lo[3][kWideArity];
+  T hi[3][kWideArity];
+  NodeRef child[kWideArity];
+  // Near-to-far child order for each direction octant (bit a set: direction component a < 0),
+  // computed at build time from the child box centres: nibble k is the slot ranked k-th.
+  std::uint32_t order[8];
+  std::uint32_t valid = 0;  // bit s: slot s holds a child
+};
+
+template <typename T>
+struct alignas(64) TriBlock {
+  T v[3][3][kBlockLanes];  // v[corner][axis][lane], the input corners in input order
+  std::uint32_t geom[kBlockLanes];
+  std::uint32_t prim[kBlockLanes];
+  SumOrder sum[kBlockLanes];
+  std::uint32_t valid = 0;  // bit l: lane l holds a triangle (padding lanes are masked, never repeated)
+
+  Vec3<T> corner(int c, int lane) const { return {v[c][0][lane], v[c][1][lane], v[c][2][lane]}; }
+};
+
+template <typename T>
+struct WideBvh {
+  std::vector<WideNode<T>> nodes;  // nodes[0] is the root when root is not a leaf
+  std::vector<TriBlock<T>> blocks;
+  BBox<T> bounds;                  // of every triangle: the root's box
+  NodeRef root = make_leaf_ref(0, 1);
+  std::uint32_t depth = 0;         // inner levels on the longest root-to-leaf path
+  std::size_t triangles = 0;
+  double scene_max_abs = 0;        // for TraversalRay::make
+
+  bool empty() const { return triangles == 0; }
+  // Entries a depth-first stack can hold at most: seven siblings left behind per level, plus one.
+  std::size_t stack_capacity() const { return std::size_t(depth) * (kWideArity - 1) + 1; }
+  std::size_t memory_bytes() const {
+    return nodes.size() * sizeof(WideNode<T>) + blocks.size() * sizeof(TriBlock<T>);
+  }
+};
+
+using WideBvhf = WideBvh<float>;
+using WideBvhd = WideBvh<double>;
+
+// Collapses a binary BVH: each wide node takes the binary children with the largest surface area
+// apart until it holds eight; a subtree of at most eight triangles becomes one leaf block.
+template <typename T>
+WideBvh<T> build_wide_bvh(const Bvh<T>& binary);
+
+extern template WideBvh<float> build_wide_bvh<float>(const Bvh<float>&);
+extern template WideBvh<double> build_wide_bvh<double>(const Bvh<double>&);
+
+}  // namespace pierce
