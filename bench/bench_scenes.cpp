@@ -1,10 +1,13 @@
 #include "bench_scenes.h"
 
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 #include <random>
 
+#include "pierce/analysis/mesh_report.h"
 #include "pierce/generators.h"
+#include "pierce/io/mesh_io.h"
 
 namespace pierce::bench {
 
@@ -64,6 +67,29 @@ BenchScene blob_scene(int subdivisions, std::size_t ray_count, std::uint64_t see
   b.description = "gen::blob(" + std::to_string(subdivisions) +
                   "): closed organic mesh (displaced subdivided icosahedron); random rays through the bounds";
   b.rays = random_rays_through(b.scene.bounds(), ray_count, seed + 2);
+  b.closed = true;
+  return b;
+}
+
+BenchScene shell_scene(int outer_subdivisions, int inner_subdivisions, std::size_t ray_count, std::uint64_t seed) {
+  BenchScene b;
+  b.name = "shell";
+  b.scene = gen::to_scene({gen::hollow_sphere(outer_subdivisions, inner_subdivisions, 0.95)});
+  b.description = "gen::hollow_sphere(" + std::to_string(outer_subdivisions) + ", " +
+                  std::to_string(inner_subdivisions) + "): closed shell, wall 0.05; random rays through the bounds";
+  b.rays = random_rays_through(b.scene.bounds(), ray_count, seed + 3);
+  b.closed = true;
+  return b;
+}
+
+BenchScene mesh_scene(const std::string& path, std::size_t ray_count, std::uint64_t seed) {
+  BenchScene b;
+  b.name = std::filesystem::path(path).filename().string();
+  add_model_files(b.scene, {path});
+  b.closed = true;
+  for (const analysis::SolidReport& s : analysis::mesh_report(b.scene)) b.closed = b.closed && s.closed;
+  b.description = path + (b.closed ? " (closed)" : " (open)") + "; random rays through the bounds";
+  b.rays = random_rays_through(b.scene.bounds(), ray_count, seed + 4);
   return b;
 }
 

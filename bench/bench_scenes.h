@@ -24,6 +24,7 @@ struct BenchScene {
   std::vector<Ray> rays;
   // Exact number of hits of every ray when the construction determines it (plates), else -1.
   long expected_hits_per_ray = -1;
+  bool closed = false;  // closed surfaces and rays from outside: every ray has an even number of hits
 };
 
 // `layers` touching plates stacked along z (each plate [0,1]^2 x [i/layers, (i+1)/layers]),
@@ -36,6 +37,14 @@ BenchScene hairball_scene(std::size_t triangles, double size, std::size_t ray_co
 
 // gen::blob (closed, 20 * 4^subdivisions triangles); random rays through the scene bounds.
 BenchScene blob_scene(int subdivisions, std::size_t ray_count, std::uint64_t seed);
+
+// gen::hollow_sphere(outer, inner): a closed shell of wall 0.05 (outer subdivision 8 and inner 7:
+// 1.64 M triangles); random rays through the bounds.
+BenchScene shell_scene(int outer_subdivisions, int inner_subdivisions, std::size_t ray_count, std::uint64_t seed);
+
+// A model file the user brings (STL, OBJ, OFF, PLY; one geometry per file or group); random rays
+// through the bounds. `closed` if every geometry is a closed surface.
+BenchScene mesh_scene(const std::string& path, std::size_t ray_count, std::uint64_t seed);
 
 // Rays through uniformly random points of `bounds` in uniformly random directions, starting
 // one bounds diagonal before that point (outside the box), tmin = 0, tmax = infinity.

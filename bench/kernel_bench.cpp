@@ -1,7 +1,10 @@
 // pierce_bench_kernels: the table of Wald et al. 2019, Fig. 3, for Pierce's kernels.
 // For each scene and kernel, the rays/s of getting the first N hits of every ray
-// (N = 1, 5, 15, all), on all cores, against Embree's native first hit as reference.
-// A benchmark, not a test: it reports, it never asserts a speed.
+// (N = 1, 5, 15, all), against reference rows of plain Embree code (embree_reference.h) on the
+// same rays in the same run: native first hit, first hit with RTC_SCENE_FLAG_ROBUST, the
+// all-hits filter (sorted, duplicates removed) and lexicographic restart. Every row also shows
+// how many rays it got wrong against the exact kernels. A benchmark, not a test: it reports, it
+// never asserts a speed.
 #include <embree3/rtcore.h>
 #include <oneapi/tbb/version.h>
 #include <tbb/blocked_range.h>
@@ -26,6 +29,7 @@
 
 #include "bench_machine.h"
 #include "bench_scenes.h"
+#include "embree_reference.h"
 #include "pierce/bvh_builder.h"
 #include "pierce/kernel.h"
 
@@ -62,14 +66,17 @@ std::uint64_t mix(std::uint64_t x) {  // splitmix64 finaliser
   return x ^ (x >> 31);
 }
 
+// Adds one ray's hits to `t`; returns the ray's hash (0 for no hits), which identifies its hit list.
 template <typename HitRange>
-void tally_ray(Tally& t, const HitRange& hits) {
+std::uint64_t tally_ray(Tally& t, const HitRange& hits) {
   std::uint64_t h = 0x9e3779b97f4a7c15ULL;
   for (const Hit& hit : hits) h = mix(h ^ ((std::uint64_t(hit.geom) << 32) | hit.prim));
+  if (hits.empty()) h = 0;
   t.hits += hits.size();
-  t.hash += hits.empty() ? 0 : h;
+  t.hash += h;
   t.rays_hit += hits.empty() ? 0 : 1;
   t.max_per_ray = std::max<std::uint64_t>(t.max_per_ray, hits.size());
+  return h;
 }
 
 struct Cell {
@@ -79,13 +86,17 @@ struct Cell {
   Tally tally;
   bool deterministic = true;  // every repetition found the same hits
   Counters counters;          // summed over the timed repetitions
+  std::vector<std::uint64_t> ray_hash;  // per ray, from the last repetition
+  std::vector<std::uint32_t> ray_hits;  // hits per ray, from the last repetition
+  std::optional<std::uint64_t> wrong_rays;  // rays whose hit list differs from the exact kernels'
+  std::optional<std::uint64_t> odd_rays;    // closed scenes, all hits: rays with an odd number of hits
 };
 
 struct Row {
   std::string kernel;
   bool exact = true;
   bool reference = false;
-  std::optional<KernelKind> kind;  // empty for Embree's native first hit
+  std::optional<KernelKind> kind;  // empty for the plain Embree reference rows
   std::vector<Cell> cells;
 };
 
@@ -99,11 +110,13 @@ template <typename Pass, typename CounterSum>
 Cell time_cell(std::size_t max_hits, std::size_t ray_count, int reps, Pass&& pass, CounterSum&& counter_sum) {
   Cell c;
   c.max_hits = max_hits;
-  pass(0, std::max<std::size_t>(1, ray_count / 8));
+  c.ray_hash.assign(ray_count, 0);
+  c.ray_hits.assign(ray_count, 0);
+  pass(c, 0, std::max<std::size_t>(1, ray_count / 8));
   const Counters before = counter_sum();
   for (int r = 0; r < reps; ++r) {
     const auto t0 = Clock::now();
-    const Tally t = pass(0, ray_count);
+    const Tally t = pass(c, 0, ray_count);
     c.seconds.push_back(seconds_since(t0));
     if (r == 0) c.tally = t;
     else if (!(t == c.tally)) c.deterministic = false;
@@ -120,22 +133,50 @@ Cell time_cell(std::size_t max_hits, std::size_t ray_count, int reps, Pass&& pas
 
 constexpr std::size_t kGrain = 256;
 
-Row run_embree_first_hit(const Accel& accel, const std::vector<Ray>& rays, const Settings& st) {
-  Row row{"embree first hit", false, true, std::nullopt, {}};
-  auto pass = [&](std::size_t begin, std::size_t end) {
-    tbb::enumerable_thread_specific<Tally> local;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, kGrain), [&](const auto& range) {
-      Tally& t = local.local();
-      Hit h;
-      for (std::size_t i = range.begin(); i != range.end(); ++i) {
-        const bool hit = embree_first_hit(accel.embree(), rays[i], h);
-        tally_ray(t, std::span<const Hit>(&h, hit ? 1 : 0));
-      }
-    });
-    return local.combine([](Tally a, const Tally& b) { return a += b; });
-  };
-  row.cells.push_back(time_cell(1, rays.size(), st.reps, pass, [] { return Counters{}; }));
+// One reference row of plain Embree code; `query(ray, n, hits)` appends the first n hits (0 = all).
+template <typename Query>
+Row run_reference(const std::string& name, const std::vector<std::size_t>& columns, const std::vector<Ray>& rays,
+                  const Settings& st, Query&& query) {
+  Row row{name, false, true, std::nullopt, {}};
+  tbb::enumerable_thread_specific<std::vector<Hit>> buffers;
+  for (const std::size_t n : columns) {
+    auto pass = [&](Cell& cell, std::size_t begin, std::size_t end) {
+      tbb::enumerable_thread_specific<Tally> local;
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, kGrain), [&](const auto& range) {
+        Tally& t = local.local();
+        std::vector<Hit>& hits = buffers.local();
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+          hits.clear();
+          query(rays[i], n, hits);
+          cell.ray_hash[i] = tally_ray(t, hits);
+          cell.ray_hits[i] = std::uint32_t(hits.size());
+        }
+      });
+      return local.combine([](Tally a, const Tally& b) { return a += b; });
+    };
+    row.cells.push_back(time_cell(n, rays.size(), st.reps, pass, [] { return Counters{}; }));
+  }
   return row;
+}
+
+std::vector<Row> run_references(const EmbreeReference& plain, const EmbreeReference& robust,
+                                const std::vector<Ray>& rays, const Settings& st) {
+  std::vector<Row> rows;
+  auto first = [](const EmbreeReference& e) {
+    return [&e](const Ray& r, std::size_t, std::vector<Hit>& hits) {
+      Hit h;
+      if (e.first_hit(r, h)) hits.push_back(h);
+    };
+  };
+  rows.push_back(run_reference("embree first hit", {1}, rays, st, first(plain)));
+  rows.push_back(run_reference("embree robust 1st", {1}, rays, st, first(robust)));
+  rows.push_back(run_reference("embree all-hits", st.columns, rays, st,
+                               [&](const Ray& r, std::size_t n, std::vector<Hit>& hits) { plain.all_hits(r, n, hits); }));
+  rows.push_back(run_reference("embree lex-restart", st.columns, rays, st, [&](const Ray& r, std::size_t n,
+                                                                              std::vector<Hit>& hits) {
+    plain.restart_hits(r, n, hits);
+  }));
+  return rows;
 }
 
 Row run_kernel(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays, const Settings& st) {
@@ -147,7 +188,7 @@ Row run_kernel(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays
   for (const std::size_t n : st.columns) {
     // Fresh iterators per cell so the counters of one cell never mix with another's.
     tbb::enumerable_thread_specific<Worker> workers([&] { return Worker{HitIterator(accel, kind), {}}; });
-    auto pass = [&](std::size_t begin, std::size_t end) {
+    auto pass = [&](Cell& cell, std::size_t begin, std::size_t end) {
       tbb::enumerable_thread_specific<Tally> local;
       tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, kGrain), [&](const auto& range) {
         Worker& w = workers.local();
@@ -155,7 +196,8 @@ Row run_kernel(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays
         for (std::size_t i = range.begin(); i != range.end(); ++i) {
           w.hits.clear();
           collect_hits(w.it, rays[i], n, w.hits);
-          tally_ray(t, w.hits);
+          cell.ray_hash[i] = tally_ray(t, w.hits);
+          cell.ray_hits[i] = std::uint32_t(w.hits.size());
         }
       });
       return local.combine([](Tally a, const Tally& b) { return a += b; });
@@ -168,39 +210,6 @@ Row run_kernel(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays
     row.cells.push_back(time_cell(n, rays.size(), st.reps, pass, counter_sum));
   }
   return row;
-}
-
-// ---------------------------------------------------------------- Embree build reference
-
-// Embree's own BVH over the scene's triangles, as embree_first_hit uses it (default build
-// quality), built alone so its time is not mixed with the exact kernels' user-geometry scene.
-double time_embree_native_build(const Scene& scene) {
-  RTCDevice device = rtcNewDevice("threads=0");
-  if (!device) throw std::runtime_error("Embree: rtcNewDevice failed");
-  const auto t0 = Clock::now();
-  RTCScene rs = rtcNewScene(device);
-  for (const Geometry& geo : scene.geometries()) {
-    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                          3 * sizeof(float), geo.vertices.size()));
-    for (std::size_t i = 0; i < geo.vertices.size(); ++i)
-      v[3 * i] = float(geo.vertices[i].x), v[3 * i + 1] = float(geo.vertices[i].y),
-      v[3 * i + 2] = float(geo.vertices[i].z);
-    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                               3 * sizeof(unsigned), geo.triangles.size()));
-    for (std::size_t i = 0; i < geo.triangles.size(); ++i)
-      for (int k = 0; k < 3; ++k) idx[3 * i + k] = geo.triangles[i][k];
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(rs, g);
-    rtcReleaseGeometry(g);
-  }
-  rtcCommitScene(rs);
-  const double s = seconds_since(t0);
-  const RTCError err = rtcGetDeviceError(device);
-  rtcReleaseScene(rs);
-  rtcReleaseDevice(device);
-  if (err != RTC_ERROR_NONE) throw std::runtime_error("Embree error " + std::to_string(int(err)) + " building");
-  return s;
 }
 
 // ---------------------------------------------------------------- printing
@@ -222,8 +231,10 @@ double mrays_per_s(const Cell& c, std::size_t rays) { return double(rays) / c.me
 
 struct SceneResult {
   const BenchScene* scene;
-  double pierce_bvh_s = 0, embree_native_s = 0, embree_accel_s = 0;
-  std::size_t bvh_nodes = 0;
+  double pierce_build_s = 0;  // what Accel builds for the own-BVH kernels: binned SAH + collapse to BVH8
+  std::size_t pierce_bytes = 0, wide_nodes = 0, leaf_blocks = 0, triangles_in_bvh = 0;
+  double embree_build_s = 0, embree_robust_build_s = 0;
+  std::size_t embree_bytes = 0;
   std::vector<Row> rows;
   double reference_mrays = 0;
   std::optional<Tally> exact_all;  // the exact kernels' consensus for "all"
@@ -257,16 +268,66 @@ void check_agreement(SceneResult& r, const Settings& st) {
                          std::to_string(std::uint64_t(expected) * r.scene->rays.size()));
 }
 
+// Wrong rays of the inexact rows (reference rows and epsilon): hit lists that differ from the first
+// exact row's in the same column. On closed scenes, rays with an odd number of hits ("all").
+void count_wrong_rays(SceneResult& r) {
+  const Row* exact = nullptr;
+  for (const Row& row : r.rows)
+    if (row.exact && !row.reference) {
+      exact = &row;
+      break;
+    }
+  for (Row& row : r.rows) {
+    for (Cell& cell : row.cells) {
+      if (r.scene->closed && cell.max_hits == 0) {
+        std::uint64_t odd = 0;
+        for (const std::uint32_t n : cell.ray_hits) odd += n % 2;
+        cell.odd_rays = odd;
+      }
+      if (exact == nullptr || row.exact) continue;
+      const auto it = std::find_if(exact->cells.begin(), exact->cells.end(),
+                                   [&](const Cell& e) { return e.max_hits == cell.max_hits; });
+      if (it == exact->cells.end()) continue;
+      std::uint64_t wrong = 0;
+      for (std::size_t i = 0; i < cell.ray_hash.size(); ++i) wrong += cell.ray_hash[i] != it->ray_hash[i];
+      cell.wrong_rays = wrong;
+    }
+  }
+}
+
+const Cell* find_cell(const SceneResult& r, const std::string& kernel, std::size_t max_hits) {
+  for (const Row& row : r.rows)
+    if (row.kernel == kernel)
+      for (const Cell& c : row.cells)
+        if (c.max_hits == max_hits) return &c;
+  return nullptr;
+}
+
+// Fastest exact own-BVH kernel (restart, queue, nodecull, filter, buffered) in a column.
+const Row* best_exact_own(const SceneResult& r, std::size_t column) {
+  const Row* best = nullptr;
+  for (const Row& row : r.rows) {
+    if (!row.exact || row.reference || !row.kind || uses_embree(*row.kind)) continue;
+    if (best == nullptr || row.cells[column].median_seconds < best->cells[column].median_seconds) best = &row;
+  }
+  return best;
+}
+
 void print_scene(const SceneResult& r, const Settings& st) {
   const BenchScene& s = *r.scene;
   const std::size_t rays = s.rays.size();
   std::cout << "\n== " << s.name << ": " << s.description << "\n";
   std::cout << "triangles " << s.scene.triangle_count() << " in " << s.scene.geometries().size()
             << " geometries; rays " << rays << "\n";
-  std::cout << "build: Pierce BVH (binned SAH, float) " << fmt("%.3f", r.pierce_bvh_s) << " s, " << r.bvh_nodes
-            << " nodes; Embree BVH (native triangles) " << fmt("%.3f", r.embree_native_s)
-            << " s; Embree scenes of the Embree kernels (exact user geometry + native) "
-            << fmt("%.3f", r.embree_accel_s) << " s\n";
+  const double tris = double(s.scene.triangle_count());
+  std::cout << "build: Pierce (binned SAH + collapse to BVH8, float) " << fmt("%.3f", r.pierce_build_s) << " s, "
+            << r.wide_nodes << " wide nodes, " << r.leaf_blocks << " leaf blocks ("
+            << fmt("%.2f", double(r.triangles_in_bvh) / double(std::max<std::size_t>(1, r.leaf_blocks)))
+            << " of 8 lanes used), " << fmt("%.0f", double(r.pierce_bytes) / tris) << " bytes/triangle; "
+            << "Embree (plain) " << fmt("%.3f", r.embree_build_s) << " s, "
+            << fmt("%.0f", double(r.embree_bytes) / tris) << " bytes/triangle (robust: "
+            << fmt("%.3f", r.embree_robust_build_s) << " s); build ratio "
+            << fmt("%.2f", r.pierce_build_s / r.embree_build_s) << "x\n";
   if (r.exact_all) {
     std::cout << "hits per ray (exact kernels, all): mean " << fmt("%.2f", double(r.exact_all->hits) / double(rays))
               << ", max " << r.exact_all->max_per_ray << ", rays with a hit " << r.exact_all->rays_hit;
@@ -306,8 +367,8 @@ void print_scene(const SceneResult& r, const Settings& st) {
       std::cout << "    " << row.kernel << " found " << row.cells.back().tally.hits << " hits in \"all\", the exact "
                 << "kernels " << r.exact_all->hits << ".\n";
   for (const Row& row : r.rows)
-    if (row.reference) {
-      std::cout << "    Embree first hit hit " << row.cells[0].tally.rays_hit << " rays";
+    if (row.reference && row.cells[0].max_hits == 1) {
+      std::cout << "    " << row.kernel << " hit " << row.cells[0].tally.rays_hit << " rays";
       for (const Row& e : r.rows)
         if (e.exact && !e.cells.empty() && e.cells[0].max_hits == 1) {
           std::cout << ", the exact kernels " << e.cells[0].tally.rays_hit;
@@ -336,6 +397,45 @@ void print_scene(const SceneResult& r, const Settings& st) {
       std::cout << "\n";
     }
   }
+  std::cout << "\nwrong rays (hit list differs from the exact kernels'; all: + rays with an odd hit count on a "
+               "closed scene)\n"
+            << std::string(kNameWidth, ' ');
+  for (const std::size_t n : st.columns) std::cout << "  " << pad(column_title(n), 15);
+  std::cout << "\n";
+  for (const Row& row : r.rows) {
+    if (row.exact) continue;
+    std::cout << pad(row.kernel, kNameWidth);
+    for (const std::size_t n : st.columns) {
+      const Cell* c = find_cell(r, row.kernel, n);
+      std::string t = c && c->wrong_rays ? std::to_string(*c->wrong_rays) : "-";
+      if (c && c->odd_rays) t += " +" + std::to_string(*c->odd_rays) + " odd";
+      std::cout << "  " << pad(t, 15);
+    }
+    std::cout << "\n";
+  }
+  // What exactness costs: time ratios (>1 = slower than the plain Embree row), same rays, same run.
+  std::cout << "\ncost of exactness (time of the exact kernel / time of plain Embree code):\n";
+  auto ratio = [&](const Cell* a, const Cell* b) { return a && b ? fmt("%.2f", a->median_seconds / b->median_seconds) : std::string("-"); };
+  for (std::size_t c = 0; c < st.columns.size(); ++c) {
+    const Row* best = best_exact_own(r, c);
+    if (!best) continue;
+    const std::size_t n = st.columns[c];
+    std::cout << "  " << pad(column_title(n), 8) << "best exact own-BVH kernel " << pad(best->kernel, 9);
+    if (n == 1) std::cout << ratio(&best->cells[c], find_cell(r, "embree first hit", 1)) << "x first hit, "
+                          << ratio(&best->cells[c], find_cell(r, "embree robust 1st", 1)) << "x robust first hit";
+    std::cout << (n == 1 ? ", " : "") << ratio(&best->cells[c], find_cell(r, "embree all-hits", n)) << "x all-hits filter, "
+              << ratio(&best->cells[c], find_cell(r, "embree lex-restart", n)) << "x lex-restart";
+    if (n == 5 || n == 15) {
+      const Cell* q = find_cell(r, "queue", n);
+      const Cell* a = find_cell(r, "restart", n);
+      const Cell* f = find_cell(r, "filter", n);
+      if (q && a && f)
+        std::cout << "; queue / min(restart, filter) " << fmt("%.2f", q->median_seconds / std::min(a->median_seconds, f->median_seconds));
+    }
+    std::cout << "\n";
+  }
+  if (const Cell* e = find_cell(r, "epsilon", 1))
+    std::cout << "  epsilon (1 hit) " << ratio(e, find_cell(r, "embree first hit", 1)) << "x plain first hit\n";
   for (const std::string& p : r.problems) std::cout << "WARNING: " << p << "\n";
   std::cout.flush();
 }
@@ -349,10 +449,13 @@ json scene_json(const SceneResult& r) {
   j["triangles"] = s.scene.triangle_count();
   j["geometries"] = s.scene.geometries().size();
   j["rays"] = rays;
-  j["build_seconds"] = {{"pierce_bvh", r.pierce_bvh_s},
-                        {"embree_native_bvh", r.embree_native_s},
-                        {"embree_kernel_scenes", r.embree_accel_s}};
-  j["pierce_bvh_nodes"] = r.bvh_nodes;
+  j["build_seconds"] = {{"pierce", r.pierce_build_s},
+                        {"embree", r.embree_build_s},
+                        {"embree_robust", r.embree_robust_build_s}};
+  j["bytes_per_triangle"] = {{"pierce", double(r.pierce_bytes) / double(s.scene.triangle_count())},
+                             {"embree", double(r.embree_bytes) / double(s.scene.triangle_count())}};
+  j["pierce_wide_nodes"] = r.wide_nodes;
+  j["pierce_leaf_blocks"] = r.leaf_blocks;
   if (s.expected_hits_per_ray >= 0) j["expected_hits_per_ray"] = s.expected_hits_per_ray;
   if (r.exact_all) {
     j["hits_per_ray_all"] = {{"mean", double(r.exact_all->hits) / double(rays)},
@@ -382,6 +485,8 @@ json scene_json(const SceneResult& r) {
                  {"rays_with_a_hit", c.tally.rays_hit},
                  {"hit_hash", c.tally.hash},
                  {"deterministic", c.deterministic}};
+      if (c.wrong_rays) jc["wrong_rays"] = *c.wrong_rays;
+      if (c.odd_rays) jc["odd_hit_count_rays"] = *c.odd_rays;
       if (kCountersEnabled && !row.reference) {
         const double per = 1.0 / (double(rays) * double(c.seconds.size()));
         jc["counters_per_ray"] = {{"node_tests", double(c.counters.node_tests) * per},
@@ -408,26 +513,27 @@ SceneResult run_scene(const BenchScene& s, const std::vector<KernelKind>& kernel
   SceneResult r;
   r.scene = &s;
   std::cerr << "[" << s.name << "] building\n";
-  {
-    const auto t0 = Clock::now();
-    const Bvhf bvh = build_bvh<float>(s.scene);
-    r.pierce_bvh_s = seconds_since(t0);
-    r.bvh_nodes = bvh.nodes.size();
-    const auto t1 = Clock::now();
-    const EmbreeAccel embree(s.scene, bvh.tris);
-    r.embree_accel_s = seconds_since(t1);
-  }
-  r.embree_native_s = time_embree_native_build(s.scene);
+  const auto t0 = Clock::now();
   const Accel accel(s.scene);
+  r.pierce_build_s = seconds_since(t0);
+  r.pierce_bytes = accel.wide().memory_bytes();
+  r.wide_nodes = accel.wide().nodes.size();
+  r.leaf_blocks = accel.wide().blocks.size();
+  r.triangles_in_bvh = accel.wide().triangles;
+  const EmbreeReference plain(s.scene, false), robust(s.scene, true);
+  r.embree_build_s = plain.build_seconds();
+  r.embree_robust_build_s = robust.build_seconds();
+  r.embree_bytes = plain.bytes();
 
-  std::cerr << "[" << s.name << "] embree first hit\n";
-  r.rows.push_back(run_embree_first_hit(accel, s.rays, st));
-  r.reference_mrays = mrays_per_s(r.rows.back().cells[0], s.rays.size());
+  std::cerr << "[" << s.name << "] plain Embree rows\n";
+  r.rows = run_references(plain, robust, s.rays, st);
+  r.reference_mrays = mrays_per_s(r.rows.front().cells[0], s.rays.size());
   for (const KernelKind k : kernels) {
     std::cerr << "[" << s.name << "] " << kernel_name(k) << "\n";
     r.rows.push_back(run_kernel(accel, k, s.rays, st));
   }
   check_agreement(r, st);
+  count_wrong_rays(r);
   return r;
 }
 
@@ -443,8 +549,12 @@ int run(int argc, char** argv) {
   std::uint64_t seed = 1;
   auto* rays_opt = app.add_option("--rays", ray_count, "rays per scene (default 200000; 2000 with --quick)")
                        ->check(CLI::Range(std::size_t(1), std::size_t(100000000)));
-  app.add_option("--scene", scene_choice, "plates | hairball | blob | all")
-      ->check(CLI::IsMember({"plates", "hairball", "blob", "all"}));
+  std::vector<std::string> mesh_paths;
+  app.add_option("--scene", scene_choice,
+                 "plates | hairball | blob | shell (1.64 M triangles) | all (the first three) | none (only --mesh)")
+      ->check(CLI::IsMember({"plates", "hairball", "blob", "shell", "all", "none"}));
+  app.add_option("--mesh", mesh_paths, "also bench these model files (STL, OBJ, OFF, PLY), e.g. your own CAD meshes")
+      ->check(CLI::ExistingFile);
   app.add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::Range(1, 1024));
   app.add_flag("--quick", quick, "tiny scenes and rays, one repetition (smoke run)");
   app.add_option("--json", json_path, "also write every number to this JSON file");
@@ -514,6 +624,9 @@ int run(int argc, char** argv) {
     scenes.push_back(std::make_unique<BenchScene>(
         hairball_scene(size.soup_triangles, size.soup_triangle_size, ray_count, seed)));
   if (want("blob")) scenes.push_back(std::make_unique<BenchScene>(blob_scene(size.blob_subdivisions, ray_count, seed)));
+  if (scene_choice == "shell")
+    scenes.push_back(std::make_unique<BenchScene>(quick ? shell_scene(4, 3, ray_count, seed) : shell_scene(8, 7, ray_count, seed)));
+  for (const std::string& path : mesh_paths) scenes.push_back(std::make_unique<BenchScene>(mesh_scene(path, ray_count, seed)));
 
   json j;
   j["machine"] = {{"cpu", cpu_model()},

@@ -177,4 +177,28 @@ std::string to_obj(const std::vector<Mesh>& meshes) {
   return o.str();
 }
 
+Mesh flipped(Mesh m) {
+  for (Tri& t : m.triangles) std::swap(t[1], t[2]);
+  return m;
+}
+
+Mesh merged(Mesh a, const Mesh& b) {
+  const auto base = std::uint32_t(a.vertices.size());
+  a.vertices.insert(a.vertices.end(), b.vertices.begin(), b.vertices.end());
+  for (Tri t : b.triangles) a.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  return a;
+}
+
+Mesh icosphere(int subdivisions, double radius, Vec3d centre) {
+  Mesh m = blob(subdivisions, 7, 0.0);
+  m.name = "sphere";
+  return translated(scaled(m, radius), centre);
+}
+
+Mesh hollow_sphere(int outer_subdivisions, int inner_subdivisions, double inner) {
+  Mesh m = merged(icosphere(outer_subdivisions), flipped(icosphere(inner_subdivisions, inner)));
+  m.name = "hollow_sphere";
+  return m;
+}
+
 }  // namespace pierce::gen

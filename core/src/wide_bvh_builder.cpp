@@ -105,8 +105,8 @@ struct Collapser {
       for (int s = 0; s < nk; ++s) {
         const BBox<T>& b = bin.nodes[kids[s]].box;
         for (int a = 0; a < 3; ++a) w.lo[a][s] = b.lo[a], w.hi[a][s] = b.hi[a];
-        w.valid |= 1u << s;
       }
+      const std::uint32_t valid = (1u << nk) - 1;
       // Near-to-far per octant: rank the children by their centres along (+-1, +-1, +-1).
       for (int oct = 0; oct < 8; ++oct) {
         std::array<int, kWideArity> slot{};
@@ -123,8 +123,8 @@ struct Collapser {
           }
         }
         std::stable_sort(slot.begin(), slot.end(), [&](int x, int y) { return key[x] < key[y]; });
-        std::uint32_t packed = 0;
-        for (int k = 0; k < kWideArity; ++k) packed |= std::uint32_t(slot[k]) << (4 * k);
+        std::uint32_t packed = valid << 24;
+        for (int k = 0; k < kWideArity; ++k) packed |= std::uint32_t(slot[k]) << (3 * k);
         w.order[oct] = packed;
       }
     }

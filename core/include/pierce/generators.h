@@ -44,6 +44,16 @@ Mesh duplicated(const Mesh& m, int copies, bool alternate_winding);
 
 Mesh translated(Mesh m, Vec3d offset);
 Mesh scaled(Mesh m, double factor);
+// Every triangle's winding reversed.
+Mesh flipped(Mesh m);
+// b's vertices and triangles appended to a (one geometry).
+Mesh merged(Mesh a, const Mesh& b);
+
+// Icosphere (gen::blob without bumps, vertices on the sphere): 20 * 4^subdivisions triangles.
+Mesh icosphere(int subdivisions, double radius = 1.0, Vec3d centre = {});
+// One closed shell: an outer icosphere of radius 1 and an inner one of radius `inner`, facing
+// inward, so the wall is 1 - inner thick (less the tessellation's sag).
+Mesh hollow_sphere(int outer_subdivisions, int inner_subdivisions, double inner = 0.95);
 
 Scene to_scene(const std::vector<Mesh>& meshes);
 

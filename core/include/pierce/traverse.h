@@ -175,17 +175,18 @@ inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Pendi
       continue;
     }
 
-    const WideNode<T>& n = bvh.nodes[cur.ref];
-    alignas(64) T tn[kWideArity];
-    std::uint32_t mask = Ops::node_hits(n, r, p.lo(), p.hi(), tn);
-    PIERCE_COUNT(c, node_tests, std::uint64_t(__builtin_popcount(n.valid)));
+    alignas(32) T tn[kWideArity];
+    alignas(32) NodeRef child[kWideArity];
+    // Bit k: the child ranked k-th near to far for this octant passed; tn and child in that order.
+    std::uint32_t mask = Ops::node_hits(bvh.nodes[cur.ref], r, p.lo(), p.hi(), oct, tn, child);
+    PIERCE_COUNT(c, node_tests, std::uint64_t(__builtin_popcount(bvh.nodes[cur.ref].valid())));
     if constexpr (Policy::kCullsInRange) {
       const T cull = p.cull_bound();
       for (std::uint32_t m = mask; m != 0; m &= m - 1) {
-        const int s = __builtin_ctz(m);
-        if (tn[s] > cull) {
-          p.culled(tn[s]);
-          mask &= ~(1u << s);
+        const int k = __builtin_ctz(m);
+        if (tn[k] > cull) {
+          p.culled(tn[k]);
+          mask &= ~(1u << k);
         }
       }
     }
@@ -194,31 +195,28 @@ inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Pendi
       // Descend into the nearest child directly unless a pending node is nearer still.
       int nearest = __builtin_ctz(mask);
       for (std::uint32_t m = mask & (mask - 1); m != 0; m &= m - 1) {
-        const int s = __builtin_ctz(m);
-        if (tn[s] < tn[nearest]) {
-          pending.push({tn[nearest], n.child[nearest]});
-          nearest = s;
+        const int k = __builtin_ctz(m);
+        if (tn[k] < tn[nearest]) {
+          pending.push({tn[nearest], child[nearest]});
+          nearest = k;
         } else {
-          pending.push({tn[s], n.child[s]});
+          pending.push({tn[k], child[k]});
         }
       }
-      cur = {tn[nearest], n.child[nearest]};
+      cur = {tn[nearest], child[nearest]};
       if (!pending.empty() && pending.next_tn() < cur.tn) {
         pending.push(cur);
         cur = pending.pop();
       }
     } else {
-      // Far to near in the octant's precomputed order, so the nearest child is descended into
-      // directly and the next nearest is popped first.
-      const std::uint32_t order = n.order[oct];
-      int nearest = -1;
-      for (int k = kWideArity - 1; k >= 0; --k) {
-        const int s = int(order >> (4 * k) & 15u);
-        if (!(mask >> s & 1u)) continue;
-        if (nearest >= 0) pending.push({tn[nearest], n.child[nearest]});
-        nearest = s;
+      // Far to near, so the next nearest is popped first; the nearest is descended into directly.
+      while (mask & (mask - 1)) {
+        const int k = 31 - __builtin_clz(mask);
+        pending.push({tn[k], child[k]});
+        mask ^= 1u << k;
       }
-      cur = {tn[nearest], n.child[nearest]};
+      const int k = __builtin_ctz(mask);
+      cur = {tn[k], child[k]};
     }
     have = true;
   }

@@ -35,14 +35,17 @@ constexpr NodeRef make_leaf_ref(std::uint32_t first_block, std::uint32_t blocks)
 template <typename T>
 struct alignas(64) WideNode {
   // Child boxes by axis and slot; unused slots hold the empty box (lo = +inf, hi = -inf) and are
-  // also masked out by `valid`, so they can never pass.
+  // also masked out by valid(), so they can never pass.
   T lo[3][kWideArity];
   T hi[3][kWideArity];
   NodeRef child[kWideArity];
   // Near-to-far child order for each direction octant (bit a set: direction component a < 0),
-  // computed at build time from the child box centres: nibble k is the slot ranked k-th.
+  // computed at build time from the child box centres: bits 3k..3k+2 hold the slot ranked k-th.
+  // Bits 24..31 of every entry hold the mask of used slots (a 256-byte node for float).
   std::uint32_t order[8];
-  std::uint32_t valid = 0;  // bit s: slot s holds a child
+
+  std::uint32_t valid() const { return order[0] >> 24; }
+  static constexpr int slot_at_rank(std::uint32_t order_word, int rank) { return int(order_word >> (3 * rank) & 7u); }
 };
 
 template <typename T>

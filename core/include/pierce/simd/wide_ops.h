@@ -1,6 +1,7 @@
 #pragma once
 // The two SIMD operations of the wide-BVH traversal, at each instruction-set level:
-//  - node_hits: slab test of a node's eight child boxes against [lo, hi];
+//  - node_hits: slab test of a node's eight child boxes against [lo, hi]; the result (mask, entry
+//    distances, child references) comes in the node's near-to-far order for the ray's octant;
 //  - tri_candidates: lanes of a leaf block that the exact triangle test may accept.
 // Both are bit-for-bit the scalar arithmetic of slab.h and triangle.h, lane by lane: the same
 // operations in the same order (the project builds with -ffp-contract=off, so nothing is fused),
@@ -23,13 +24,17 @@ namespace pierce::simd {
 // The scalar path: every level reduces to this on CPUs without AVX2, and the double BVH uses it.
 template <typename T>
 struct ScalarOps {
-  static std::uint32_t node_hits(const WideNode<T>& n, const TraversalRay<T>& r, T lo, T hi, T* tn) {
+  static std::uint32_t node_hits(const WideNode<T>& n, const TraversalRay<T>& r, T lo, T hi, int oct, T* tn,
+                                 NodeRef* child) {
+    const std::uint32_t order = n.order[oct], valid = order >> 24;
     std::uint32_t mask = 0;
-    for (int s = 0; s < kWideArity; ++s) {
-      if (!(n.valid >> s & 1)) continue;
+    for (int k = 0; k < kWideArity; ++k) {
+      const int s = WideNode<T>::slot_at_rank(order, k);
+      if (!(valid >> s & 1)) continue;
       const Span<T> sp = slab(r, Vec3<T>(n.lo[0][s], n.lo[1][s], n.lo[2][s]), Vec3<T>(n.hi[0][s], n.hi[1][s], n.hi[2][s]));
-      tn[s] = sp.tn;
-      if (box_overlaps(r, sp, lo, hi)) mask |= 1u << s;
+      tn[k] = sp.tn;
+      child[k] = n.child[s];
+      if (box_overlaps(r, sp, lo, hi)) mask |= 1u << k;
     }
     return mask;
   }
@@ -39,10 +44,16 @@ struct ScalarOps {
 constexpr float kWidenUp = 1.0f + 1.0f / float(1 << 20);  // TraversalRay::widen's factors, exact in float
 constexpr float kWidenDown = 1.0f - 1.0f / float(1 << 20);
 
+// Lane k of the result: the slot ranked k-th in `order` (WideNode::order).
+__attribute__((target("avx2"))) inline __m256i rank_slots(std::uint32_t order) {
+  const __m256i shifts = _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21);
+  return _mm256_and_si256(_mm256_srlv_epi32(_mm256_set1_epi32(int(order)), shifts), _mm256_set1_epi32(7));
+}
+
 struct Avx2Ops {
   __attribute__((target("avx2"))) static std::uint32_t node_hits(const WideNode<float>& n,
                                                                   const TraversalRay<float>& r, float lo, float hi,
-                                                                  float* tn_out) {
+                                                                  int oct, float* tn_out, NodeRef* child_out) {
     __m256 tn = _mm256_set1_ps(-std::numeric_limits<float>::infinity());
     __m256 tf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
     __m256 outside = _mm256_setzero_ps();
@@ -67,8 +78,15 @@ struct Avx2Ops {
     const __m256 ok = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(tn, wf, _CMP_LE_OQ),
                                                   _mm256_cmp_ps(tn, _mm256_set1_ps(hi), _CMP_LE_OQ)),
                                     _mm256_cmp_ps(wf, _mm256_set1_ps(lo), _CMP_GE_OQ));
-    _mm256_store_ps(tn_out, tn);
-    return std::uint32_t(_mm256_movemask_ps(_mm256_andnot_ps(outside, ok))) & n.valid;
+    const std::uint32_t order = n.order[oct];
+    const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    const __m256i valid = _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(order >> 24)), bits), bits);
+    const __m256 pass = _mm256_and_ps(_mm256_andnot_ps(outside, ok), _mm256_castsi256_ps(valid));
+    const __m256i rank = rank_slots(order);
+    _mm256_store_ps(tn_out, _mm256_permutevar8x32_ps(tn, rank));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(child_out),
+                       _mm256_permutevar8x32_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(n.child)), rank));
+    return std::uint32_t(_mm256_movemask_ps(_mm256_permutevar8x32_ps(pass, rank)));
   }
 
   __attribute__((target("avx2"))) static std::uint32_t tri_candidates(const TriBlock<float>& b,
@@ -107,14 +125,16 @@ struct Avx2Ops {
 struct Avx512Ops {
   __attribute__((target(PIERCE_AVX512_TARGET))) static std::uint32_t node_hits(const WideNode<float>& n,
                                                                                 const TraversalRay<float>& r,
-                                                                                float lo, float hi, float* tn_out) {
+                                                                                float lo, float hi, int oct,
+                                                                                float* tn_out, NodeRef* child_out) {
+    const std::uint32_t order = n.order[oct];
     __m256 tn = _mm256_set1_ps(-std::numeric_limits<float>::infinity());
     __m256 tf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
-    __mmask8 inside = __mmask8(n.valid);
+    __mmask8 inside = __mmask8(order >> 24);
     for (int a = 0; a < 3; ++a) {
       const __m256 L = _mm256_load_ps(n.lo[a]), H = _mm256_load_ps(n.hi[a]);
       const __m256 o = _mm256_set1_ps(r.org[a]);
-      if (r.zero[a]) {
+      if (r.zero[a]) {  // parallel to the slabs: inside, not (o < L or o > H)
         inside &= _mm256_mask_cmp_ps_mask(_mm256_cmp_ps_mask(o, L, _CMP_NLT_UQ), o, H, _CMP_NGT_UQ);
         continue;
       }
@@ -132,8 +152,11 @@ struct Avx512Ops {
     __mmask8 ok = _mm256_mask_cmp_ps_mask(inside, tn, wf, _CMP_LE_OQ);
     ok = _mm256_mask_cmp_ps_mask(ok, tn, _mm256_set1_ps(hi), _CMP_LE_OQ);
     ok = _mm256_mask_cmp_ps_mask(ok, wf, _mm256_set1_ps(lo), _CMP_GE_OQ);
-    _mm256_store_ps(tn_out, tn);
-    return ok;
+    const __m256i rank = rank_slots(order);
+    _mm256_store_ps(tn_out, _mm256_permutexvar_ps(rank, tn));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(child_out),
+                       _mm256_permutexvar_epi32(rank, _mm256_load_si256(reinterpret_cast<const __m256i*>(n.child))));
+    return _mm256_movepi32_mask(_mm256_permutexvar_epi32(rank, _mm256_movm_epi32(ok)));
   }
 
   __attribute__((target(PIERCE_AVX512_TARGET))) static std::uint32_t tri_candidates(const TriBlock<float>& b,
