@@ -15,6 +15,7 @@
 // The traversal is written once and compiled for each instruction-set level (simd_level.h):
 // traverse() picks the level's instantiation; the SIMD ones are compiled with the level's target
 // attribute and flattened, so the node and leaf tests inline into the loop.
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <type_traits>
@@ -33,29 +34,32 @@ struct NodeEntry {
   NodeRef ref;
 };
 
-// Depth-first pending nodes. Its capacity is reserved from the BVH's depth: no allocation per ray.
+// Depth-first pending nodes, in a buffer sized once from the BVH's depth (WideBvh::stack_capacity):
+// no allocation and no capacity check per push. The traversal works on the raw buffer.
 template <typename T>
 class NodeStack {
  public:
   static constexpr bool kOrdered = false;
-  void reserve(std::size_t n) { v_.reserve(n); }
-  void clear() { v_.clear(); }
-  bool empty() const { return v_.empty(); }
-  void push(NodeEntry<T> e) { v_.push_back(e); }
-  NodeEntry<T> pop() {
-    const NodeEntry<T> e = v_.back();
-    v_.pop_back();
-    return e;
+  void reserve(std::size_t n) {
+    if (v_.size() < n) v_.resize(n);
   }
-  T next_tn() const { return v_.back().tn; }
+  void clear() { size_ = 0; }
+  bool empty() const { return size_ == 0; }
+  void push(NodeEntry<T> e) { v_[size_++] = e; }
+  NodeEntry<T> pop() { return v_[--size_]; }
+  T next_tn() const { return v_[size_ - 1].tn; }
   T min_tn() const {
     T m = std::numeric_limits<T>::infinity();
-    for (const auto& e : v_) m = e.tn < m ? e.tn : m;
+    for (std::size_t i = 0; i < size_; ++i) m = v_[i].tn < m ? v_[i].tn : m;
     return m;
   }
+  NodeEntry<T>* data() { return v_.data(); }
+  std::size_t size() const { return size_; }
+  void set_size(std::size_t n) { size_ = n; }
 
  private:
   std::vector<NodeEntry<T>> v_;
+  std::size_t size_ = 0;
 };
 
 // Pending nodes ordered by entry distance (a binary min-heap in a vector that keeps its capacity).
@@ -106,6 +110,8 @@ template <typename T>
 struct TraversalPolicy {
   // True if cull_bound() can be below hi(): children that pass the box test are then checked too.
   static constexpr bool kCullsInRange = false;
+  // True if suspend() can return true (it then sees the pending nodes).
+  static constexpr bool kSuspends = false;
   void culled(T /*tn*/) {}
   template <class Pending>
   bool suspend(T /*next_tn*/, const Pending& /*pending*/) const {
@@ -124,20 +130,127 @@ inline void seed(const WideBvh<T>& bvh, const TraversalRay<T>& r, T lo, T hi, Pe
   if (box_overlaps(r, s, lo, hi)) pending.push({s.tn, bvh.root});
 }
 
+// Pieces of the loop shared by both container kinds.
+template <class Ops, typename T, class Policy>
+inline void detail_leaf(const Ops& ops, const TriBlock<T>* blocks, NodeRef ref, const TraversalRay<T>& r, Policy& p,
+                        Counters& c) {
+  (void)c;
+  PIERCE_COUNT(c, leaf_visits, 1);
+  const std::uint32_t first = leaf_first_block(ref), end = first + leaf_block_count(ref);
+  for (std::uint32_t b = first; b < end; ++b) {
+    const TriBlock<T>& blk = blocks[b];
+    std::uint32_t cand = ops.tri_candidates(blk);
+    PIERCE_COUNT(c, prim_tests, std::uint64_t(__builtin_popcount(blk.valid)));
+    while (cand != 0) {
+      const int l = __builtin_ctz(cand);
+      cand &= cand - 1;
+      TriangleHit<T> th;
+      if (!intersect(r, blk.corner(0, l), blk.corner(1, l), blk.corner(2, l), blk.sum[l], p.lo(), p.hi(), th))
+        continue;
+      PIERCE_COUNT(c, valid_hits, 1);
+      p.hit(blk, l, th);
+    }
+  }
+}
+
+template <typename T, class Policy>
+inline std::uint32_t detail_cull(Policy& p, std::uint32_t mask, const T* tn) {
+  const T cull = p.cull_bound();
+  for (std::uint32_t m = mask; m != 0; m &= m - 1) {
+    const int k = __builtin_ctz(m);
+    if (tn[k] > cull) {
+      p.culled(tn[k]);
+      mask &= ~(1u << k);
+    }
+  }
+  return mask;
+}
+
+// Leaf blocks are the data most likely to miss the caches: ask for them as soon as they are
+// known to be visited, while the nodes in front of them are processed.
 template <typename T>
-inline int octant(const TraversalRay<T>& r) {
-  return (r.dir.x < 0 ? 1 : 0) | (r.dir.y < 0 ? 2 : 0) | (r.dir.z < 0 ? 4 : 0);
+inline void detail_prefetch_leaves(const TriBlock<T>* blocks, std::uint32_t mask, const NodeRef* child) {
+  for (std::uint32_t m = mask; m != 0; m &= m - 1) {
+    const NodeRef ref = child[__builtin_ctz(m)];
+    if (!is_leaf(ref)) continue;
+    const char* line = reinterpret_cast<const char*>(&blocks[leaf_first_block(ref)]);
+    for (std::size_t off = 0; off < offsetof(TriBlock<T>, geom); off += 64) __builtin_prefetch(line + off);
+  }
 }
 
 // The traversal loop with the node and leaf tests of `Ops`. Returns true when every pending node
 // is done, false when the policy suspended it (the next node is back on `pending`).
+template <class Ops, typename T, class Policy>
+inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, NodeHeap<T>& pending, Policy& p,
+                          Counters& c);
+
+// A stack works on locals (buffer pointer and depth in registers), written back on return.
 template <class Ops, typename T, class Pending, class Policy>
 inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Pending& pending, Policy& p,
                           Counters& c) {
   (void)c;
-  const int oct = octant(r);
+  const Ops ops(r);
+  const WideNode<T>* const nodes = bvh.nodes.data();
+  const TriBlock<T>* const blocks = bvh.blocks.data();
+  NodeEntry<T>* const stack = pending.data();
+  std::size_t sp = pending.size();
   NodeEntry<T> cur{};
-  bool have = false;  // `cur` is a child descended into directly, not taken from `pending`
+  bool have = false;  // `cur` is a child descended into directly, not taken from the stack
+  for (;;) {
+    if constexpr (Policy::kSuspends) pending.set_size(sp);
+    if (!have) {
+      if (sp == 0) return true;
+      if constexpr (Policy::kSuspends)
+        if (p.suspend(stack[sp - 1].tn, pending)) return false;
+      cur = stack[--sp];
+    } else if constexpr (Policy::kSuspends) {
+      if (p.suspend(cur.tn, pending)) {
+        stack[sp++] = cur;
+        pending.set_size(sp);
+        return false;
+      }
+    }
+    have = false;
+    if (cur.tn > p.cull_bound()) {
+      p.culled(cur.tn);
+      continue;
+    }
+    PIERCE_COUNT(c, traversal_steps, 1);
+    p.node(cur.ref, cur.tn);
+
+    if (is_leaf(cur.ref)) {
+      detail_leaf<Ops>(ops, blocks, cur.ref, r, p, c);
+      continue;
+    }
+    alignas(32) T tn[kWideArity];
+    alignas(32) NodeRef child[kWideArity];
+    // Bit k: the child ranked k-th near to far for this octant passed; tn and child in that order.
+    std::uint32_t mask = ops.node_hits(nodes[cur.ref], p.lo(), p.hi(), tn, child);
+    PIERCE_COUNT(c, node_tests, std::uint64_t(__builtin_popcount(nodes[cur.ref].valid())));
+    if constexpr (Policy::kCullsInRange) mask = detail_cull(p, mask, tn);
+    if (mask == 0) continue;
+    detail_prefetch_leaves(blocks, mask, child);
+    // Far to near, so the next nearest is popped first; the nearest is descended into directly.
+    while (mask & (mask - 1)) {
+      const int k = 31 - __builtin_clz(mask);
+      stack[sp++] = {tn[k], child[k]};
+      mask ^= 1u << k;
+    }
+    const int k = __builtin_ctz(mask);
+    cur = {tn[k], child[k]};
+    have = true;
+  }
+}
+
+template <class Ops, typename T, class Policy>
+inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, NodeHeap<T>& pending, Policy& p,
+                          Counters& c) {
+  (void)c;
+  const Ops ops(r);
+  const WideNode<T>* const nodes = bvh.nodes.data();
+  const TriBlock<T>* const blocks = bvh.blocks.data();
+  NodeEntry<T> cur{};
+  bool have = false;  // `cur` is a child descended into directly, not taken from the heap
   for (;;) {
     if (!have) {
       if (pending.empty()) return true;
@@ -156,67 +269,31 @@ inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Pendi
     p.node(cur.ref, cur.tn);
 
     if (is_leaf(cur.ref)) {
-      PIERCE_COUNT(c, leaf_visits, 1);
-      const std::uint32_t first = leaf_first_block(cur.ref), end = first + leaf_block_count(cur.ref);
-      for (std::uint32_t b = first; b < end; ++b) {
-        const TriBlock<T>& blk = bvh.blocks[b];
-        std::uint32_t cand = Ops::tri_candidates(blk, r);
-        PIERCE_COUNT(c, prim_tests, std::uint64_t(__builtin_popcount(blk.valid)));
-        while (cand != 0) {
-          const int l = __builtin_ctz(cand);
-          cand &= cand - 1;
-          TriangleHit<T> th;
-          if (!intersect(r, blk.corner(0, l), blk.corner(1, l), blk.corner(2, l), blk.sum[l], p.lo(), p.hi(), th))
-            continue;
-          PIERCE_COUNT(c, valid_hits, 1);
-          p.hit(blk, l, th);
-        }
-      }
+      detail_leaf<Ops>(ops, blocks, cur.ref, r, p, c);
       continue;
     }
-
     alignas(32) T tn[kWideArity];
     alignas(32) NodeRef child[kWideArity];
-    // Bit k: the child ranked k-th near to far for this octant passed; tn and child in that order.
-    std::uint32_t mask = Ops::node_hits(bvh.nodes[cur.ref], r, p.lo(), p.hi(), oct, tn, child);
-    PIERCE_COUNT(c, node_tests, std::uint64_t(__builtin_popcount(bvh.nodes[cur.ref].valid())));
-    if constexpr (Policy::kCullsInRange) {
-      const T cull = p.cull_bound();
-      for (std::uint32_t m = mask; m != 0; m &= m - 1) {
-        const int k = __builtin_ctz(m);
-        if (tn[k] > cull) {
-          p.culled(tn[k]);
-          mask &= ~(1u << k);
-        }
+    std::uint32_t mask = ops.node_hits(nodes[cur.ref], p.lo(), p.hi(), tn, child);
+    PIERCE_COUNT(c, node_tests, std::uint64_t(__builtin_popcount(nodes[cur.ref].valid())));
+    if constexpr (Policy::kCullsInRange) mask = detail_cull(p, mask, tn);
+    if (mask == 0) continue;
+    detail_prefetch_leaves(blocks, mask, child);
+    // Descend into the nearest child directly unless a pending node is nearer still.
+    int nearest = __builtin_ctz(mask);
+    for (std::uint32_t m = mask & (mask - 1); m != 0; m &= m - 1) {
+      const int k = __builtin_ctz(m);
+      if (tn[k] < tn[nearest]) {
+        pending.push({tn[nearest], child[nearest]});
+        nearest = k;
+      } else {
+        pending.push({tn[k], child[k]});
       }
     }
-    if (mask == 0) continue;
-    if constexpr (Pending::kOrdered) {
-      // Descend into the nearest child directly unless a pending node is nearer still.
-      int nearest = __builtin_ctz(mask);
-      for (std::uint32_t m = mask & (mask - 1); m != 0; m &= m - 1) {
-        const int k = __builtin_ctz(m);
-        if (tn[k] < tn[nearest]) {
-          pending.push({tn[nearest], child[nearest]});
-          nearest = k;
-        } else {
-          pending.push({tn[k], child[k]});
-        }
-      }
-      cur = {tn[nearest], child[nearest]};
-      if (!pending.empty() && pending.next_tn() < cur.tn) {
-        pending.push(cur);
-        cur = pending.pop();
-      }
-    } else {
-      // Far to near, so the next nearest is popped first; the nearest is descended into directly.
-      while (mask & (mask - 1)) {
-        const int k = 31 - __builtin_clz(mask);
-        pending.push({tn[k], child[k]});
-        mask ^= 1u << k;
-      }
-      const int k = __builtin_ctz(mask);
-      cur = {tn[k], child[k]};
+    cur = {tn[nearest], child[nearest]};
+    if (!pending.empty() && pending.next_tn() < cur.tn) {
+      pending.push(cur);
+      cur = pending.pop();
     }
     have = true;
   }

@@ -50,11 +50,13 @@ struct alignas(64) WideNode {
 
 template <typename T>
 struct alignas(64) TriBlock {
-  T v[3][3][kBlockLanes];  // v[corner][axis][lane], the input corners in input order
+  // What the SIMD test reads comes first and together (the lane mask, then the corners); the ids
+  // are read only for the few lanes that hit.
+  std::uint32_t valid = 0;  // bit l: lane l holds a triangle (padding lanes are masked, never repeated)
+  SumOrder sum[kBlockLanes];
+  alignas(32) T v[3][3][kBlockLanes];  // v[corner][axis][lane], the input corners in input order
   std::uint32_t geom[kBlockLanes];
   std::uint32_t prim[kBlockLanes];
-  SumOrder sum[kBlockLanes];
-  std::uint32_t valid = 0;  // bit l: lane l holds a triangle (padding lanes are masked, never repeated)
 
   Vec3<T> corner(int c, int lane) const { return {v[c][0][lane], v[c][1][lane], v[c][2][lane]}; }
 };

@@ -54,6 +54,7 @@ class BufferedKernel {
  private:
   struct Buffer : TraversalPolicy<T> {
     static constexpr bool kCullsInRange = true;
+    static constexpr bool kSuspends = true;
     BufferedKernel& k;
     explicit Buffer(BufferedKernel& kernel) : k(kernel) {}
     T lo() const { return k.lower(); }
