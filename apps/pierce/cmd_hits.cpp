@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <span>
 #include <string>
 #include <vector>
@@ -29,6 +31,7 @@ struct HitsOptions {
   std::string kernel;
   std::size_t max_hits = 0;
   std::string out;
+  std::string json;  // --kernel all: the table as JSON (bench/plot_cost.py draws it)
   bool force = false;
   bool progress = false;
 };
@@ -111,6 +114,34 @@ void print_table(const std::vector<Row>& rows, std::size_t ray_count) {
                 r.diff.rays_differ, r.diff.missing, r.diff.extra, r.diff.duplicated, r.diff.out_of_order,
                 r.diff.t_differs);
   }
+}
+
+// The table of run_all as JSON: per kernel its time and its differences from the consensus.
+void write_table_json(const HitsOptions& o, const std::vector<Row>& rows, std::size_t ray_count,
+                      std::size_t consensus_hits) {
+  nlohmann::ordered_json j;
+  j["source"] = "pierce hits --kernel all";
+  j["rays"] = ray_count;
+  j["max_hits"] = o.max_hits == 0 ? nlohmann::ordered_json("all") : nlohmann::ordered_json(o.max_hits);
+  j["consensus_hits"] = consensus_hits;
+  j["kernels"] = nlohmann::ordered_json::array();
+  for (const Row& r : rows)
+    j["kernels"].push_back({{"kernel", kernel_name(r.kind)},
+                            {"exact", is_exact(r.kind)},
+                            {"seconds", r.secs},
+                            {"ns_per_ray", ray_count ? r.secs * 1e9 / double(ray_count) : 0.0},
+                            {"hits", r.hits},
+                            {"rays_differ", r.diff.rays_differ},
+                            {"missing", r.diff.missing},
+                            {"extra", r.diff.extra},
+                            {"duplicated", r.diff.duplicated},
+                            {"out_of_order", r.diff.out_of_order},
+                            {"t_differs", r.diff.t_differs}});
+  OutputFile out(o.json, o.force);
+  const std::string text = j.dump(2) + "\n";
+  if (std::fwrite(text.data(), 1, text.size(), out.stream()) != text.size())
+    throw std::runtime_error("--json " + o.json + ": write failed");
+  out.commit();
 }
 
 // Every kernel on the same rays. The consensus per ray is the list most exact kernels return.
@@ -209,6 +240,7 @@ int run_all(const Accel& accel, const std::vector<Ray>& rays, const HitsOptions&
     std::printf("EXACT KERNELS DISAGREE: %s\n", disagreeing.c_str());
   std::fflush(stdout);
 
+  if (!o.json.empty()) write_table_json(o, rows, n, consensus_hits);
   if (!o.out.empty() && !write_csv(o, n, consensus)) return cancelled();
   return disagreeing.empty() ? 0 : kExitExactDisagreement;
 }
@@ -219,6 +251,10 @@ int run_hits(const HitsOptions& o) {
   const std::optional<KernelKind> kind = parse_kernel(o.kernel);
   if (!all && !kind) throw InputError("unknown kernel '" + o.kernel + "' (expected one of: " + kernel_list() + ")");
   OutputFile::check_target(o.out, o.force);  // before any long work
+  if (!o.json.empty()) {
+    if (!all) throw InputError("--json is the table of --kernel all; use --out for one kernel's hits");
+    OutputFile::check_target(o.json, o.force);
+  }
 
   Scene scene;
   load_models(scene, o.model);
@@ -247,7 +283,9 @@ std::function<int()> register_hits(CLI::App& app) {
   cmd->add_option("--kernel", opts->kernel, "Kernel: " + kernel_list())->required();
   cmd->add_option("--max-hits", opts->max_hits, "At most N hits per ray (0 = all)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--out", opts->out, "Write the CSV here instead of stdout (with --kernel all: the consensus hits)");
-  cmd->add_flag("--force", opts->force, "Overwrite an existing --out file");
+  cmd->add_option("--json", opts->json,
+                  "With --kernel all: also write the table (time and differences per kernel) as JSON here");
+  cmd->add_flag("--force", opts->force, "Overwrite an existing --out (or --json) file");
   cmd->add_flag("--progress", opts->progress, "Show a progress bar on stderr even when it is not a terminal");
   return [opts] { return run_hits(*opts); };
 }

@@ -2,11 +2,18 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <numeric>
+
+#include <tbb/parallel_invoke.h>
 
 namespace pierce {
 
 namespace {
+
+constexpr int kMaxBins = 64;
+// Subtrees of at least this many triangles build their two children in parallel.
+constexpr std::uint32_t kParallelGrain = 4096;
 
 // SAH bin of a centroid coordinate. Near the float range the centroid or the extent overflow to
 // infinity and the position becomes NaN or infinite: clamp without converting those to int
@@ -17,28 +24,99 @@ inline int bin_index(double c, double lo, double scale, int nb) {
   return x < double(nb - 1) ? int(x) : nb - 1;
 }
 
+// A triangle as the builder moves it: its box, centroid and index, partitioned in place so every
+// pass over a node's triangles reads memory in order.
+template <typename T>
+struct Ref {
+  BBox<T> box;
+  Vec3<T> centroid;
+  std::uint32_t tri;
+};
+
+template <typename T>
+struct Split {
+  int axis = -1, bin = 0;
+  float cost = std::numeric_limits<float>::infinity();
+  BBox<T> left, left_centroids, right, right_centroids;
+};
+
 template <typename T>
 struct Builder {
   const BvhBuildOptions& opts;
-  std::vector<Triangle<T>> tris;
-  std::vector<BBox<T>> tri_box;
-  std::vector<Vec3<T>> centroid;
-  std::vector<std::uint32_t> order;
+  std::vector<Ref<T>> refs;
   std::vector<BvhNode<T>> nodes;
 
-  BBox<T> bounds_of(std::uint32_t begin, std::uint32_t end, BBox<T>* cbox) const {
-    BBox<T> b;
+  void bounds_of(std::uint32_t begin, std::uint32_t end, BBox<T>& box, BBox<T>& cbox) const {
     for (std::uint32_t i = begin; i < end; ++i) {
-      b.extend(tri_box[order[i]]);
-      cbox->extend(centroid[order[i]]);
+      box.extend(refs[i].box);
+      cbox.extend(refs[i].centroid);
     }
-    return b;
   }
 
-  // Builds the subtree for order[begin, end) into node `index`.
-  void build(std::uint32_t index, std::uint32_t begin, std::uint32_t end) {
-    BBox<T> cbox;
-    nodes[index].box = bounds_of(begin, end, &cbox);
+  // Best binned SAH split over the three axes, all binned in one pass. Out of line, so the bins
+  // are not on the stack while the children are built.
+  __attribute__((noinline)) Split<T> best_split(std::uint32_t begin, std::uint32_t end, const BBox<T>& cbox,
+                                                int nb) const {
+    std::array<std::array<BBox<T>, kMaxBins>, 3> bb{}, cb{};
+    std::array<std::array<std::uint32_t, kMaxBins>, 3> cnt{};
+    const Vec3<T> ext = cbox.extent();
+    bool active[3];
+    double scale[3];
+    for (int a = 0; a < 3; ++a) {
+      active[a] = ext[a] > T(0);
+      scale[a] = active[a] ? double(nb) / double(ext[a]) : 0.0;
+    }
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const Ref<T>& r = refs[i];
+      for (int a = 0; a < 3; ++a) {
+        if (!active[a]) continue;
+        const int k = bin_index(r.centroid[a], cbox.lo[a], scale[a], nb);
+        bb[a][k].extend(r.box);
+        cb[a][k].extend(r.centroid);
+        ++cnt[a][k];
+      }
+    }
+    Split<T> best;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!active[axis]) continue;
+      std::array<float, kMaxBins> right_area{};
+      std::array<std::uint32_t, kMaxBins> right_cnt{};
+      BBox<T> acc;
+      std::uint32_t c = 0;
+      for (int k = nb - 1; k > 0; --k) {
+        acc.extend(bb[axis][k]);
+        c += cnt[axis][k];
+        right_area[k] = float(acc.half_area());
+        right_cnt[k] = c;
+      }
+      acc = BBox<T>{};
+      c = 0;
+      for (int k = 0; k < nb - 1; ++k) {
+        acc.extend(bb[axis][k]);
+        c += cnt[axis][k];
+        if (c == 0 || right_cnt[k + 1] == 0) continue;
+        const float cost = float(acc.half_area()) * float(c) + right_area[k + 1] * float(right_cnt[k + 1]);
+        if (cost < best.cost) best.cost = cost, best.axis = axis, best.bin = k;
+      }
+    }
+    if (best.axis >= 0) {  // the children's boxes, as unions of their bins' (exact: min and max)
+      for (int k = 0; k < nb; ++k) {
+        BBox<T>& box = k <= best.bin ? best.left : best.right;
+        BBox<T>& cbx = k <= best.bin ? best.left_centroids : best.right_centroids;
+        box.extend(bb[best.axis][k]);
+        cbx.extend(cb[best.axis][k]);
+      }
+    }
+    return best;
+  }
+
+  // Builds the subtree for refs[begin, end) (bounds `box`, centroid bounds `cbox`) into node
+  // `index`; its descendants go into the node slots from `desc` on. A subtree of m triangles has at
+  // most 2m - 1 nodes, so each child's descendants get a fixed range and both children build in
+  // parallel with a layout that does not depend on the schedule (the gaps are squeezed out after).
+  void build(std::uint32_t index, std::uint32_t begin, std::uint32_t end, std::uint32_t desc, const BBox<T>& box,
+             const BBox<T>& cbox) {
+    nodes[index].box = box;
     const std::uint32_t n = end - begin;
     auto make_leaf = [&] {
       nodes[index].first = begin;
@@ -46,67 +124,66 @@ struct Builder {
     };
     if (n <= 1) return make_leaf();
 
-    // Best binned SAH split over the three axes.
-    const int nb = opts.bins;
-    float best_cost = std::numeric_limits<float>::infinity();
-    int best_axis = -1, best_bin = 0;
-    const Vec3<T> ext = cbox.extent();
-    for (int axis = 0; axis < 3; ++axis) {
-      if (!(ext[axis] > T(0))) continue;
-      std::vector<BBox<T>> bb(nb);
-      std::vector<std::uint32_t> cnt(nb, 0);
-      const double scale = double(nb) / double(ext[axis]);
-      auto bin_of = [&](std::uint32_t tri) { return bin_index(centroid[tri][axis], cbox.lo[axis], scale, nb); };
-      for (std::uint32_t i = begin; i < end; ++i) {
-        const int k = bin_of(order[i]);
-        bb[k].extend(tri_box[order[i]]);
-        ++cnt[k];
-      }
-      std::vector<float> right_area(nb);
-      std::vector<std::uint32_t> right_cnt(nb);
-      BBox<T> acc;
-      std::uint32_t c = 0;
-      for (int k = nb - 1; k > 0; --k) {
-        acc.extend(bb[k]);
-        c += cnt[k];
-        right_area[k] = float(acc.half_area());
-        right_cnt[k] = c;
-      }
-      acc = BBox<T>{};
-      c = 0;
-      for (int k = 0; k < nb - 1; ++k) {
-        acc.extend(bb[k]);
-        c += cnt[k];
-        if (c == 0 || right_cnt[k + 1] == 0) continue;
-        const float cost = float(acc.half_area()) * float(c) + right_area[k + 1] * float(right_cnt[k + 1]);
-        if (cost < best_cost) best_cost = cost, best_axis = axis, best_bin = k;
-      }
-    }
-    const float parent_area = float(nodes[index].box.half_area());
+    const int nb = std::clamp(opts.bins, 2, kMaxBins);
+    const Split<T> best = best_split(begin, end, cbox, nb);
+    const float parent_area = float(box.half_area());
     const float leaf_cost = float(n);
-    const float split_cost = opts.traversal_cost + (parent_area > 0 ? best_cost / parent_area : 0.f);
-    if (best_axis < 0) {
+    const float split_cost = opts.traversal_cost + (parent_area > 0 ? best.cost / parent_area : 0.f);
+    if (best.axis < 0) {
       // All centroids coincide: split by index so huge stacks of coincident triangles still form a tree.
       if (n <= std::uint32_t(opts.max_leaf_size)) return make_leaf();
-      return split(index, begin, begin + n / 2, end);
+      const std::uint32_t mid = begin + n / 2;
+      Split<T> halves;
+      bounds_of(begin, mid, halves.left, halves.left_centroids);
+      bounds_of(mid, end, halves.right, halves.right_centroids);
+      return split(index, begin, mid, end, desc, halves);
     }
     if (n <= std::uint32_t(opts.max_leaf_size) && leaf_cost <= split_cost) return make_leaf();
 
-    const double scale = double(nb) / double(ext[best_axis]);
-    auto* mid = std::partition(order.data() + begin, order.data() + end, [&](std::uint32_t tri) {
-      return bin_index(centroid[tri][best_axis], cbox.lo[best_axis], scale, nb) <= best_bin;
+    const double scale = double(nb) / double(cbox.extent()[best.axis]);
+    auto* mid = std::partition(refs.data() + begin, refs.data() + end, [&](const Ref<T>& r) {
+      return bin_index(r.centroid[best.axis], cbox.lo[best.axis], scale, nb) <= best.bin;
     });
-    split(index, begin, std::uint32_t(mid - order.data()), end);
+    split(index, begin, std::uint32_t(mid - refs.data()), end, desc, best);
   }
 
-  void split(std::uint32_t index, std::uint32_t begin, std::uint32_t mid, std::uint32_t end) {
-    const auto left = std::uint32_t(nodes.size());
-    nodes.emplace_back();
-    nodes.emplace_back();
-    nodes[index].first = left;
+  void split(std::uint32_t index, std::uint32_t begin, std::uint32_t mid, std::uint32_t end, std::uint32_t desc,
+             const Split<T>& s) {
+    nodes[index].first = desc;
     nodes[index].count = 0;
-    build(left, begin, mid);
-    build(left + 1, mid, end);
+    const std::uint32_t left_desc = desc + 2, right_desc = left_desc + 2 * (mid - begin) - 2;
+    auto left = [&] { build(desc, begin, mid, left_desc, s.left, s.left_centroids); };
+    auto right = [&] { build(desc + 1, mid, end, right_desc, s.right, s.right_centroids); };
+    if (end - begin >= kParallelGrain) {
+      tbb::parallel_invoke(left, right);
+    } else {
+      left();
+      right();
+    }
+  }
+
+  // The tree without the unused slots, in depth-first order (siblings stay adjacent).
+  std::vector<BvhNode<T>> compacted() const {
+    std::vector<BvhNode<T>> out;
+    out.push_back(nodes[0]);
+    struct Todo {
+      std::uint32_t old_index, new_index;
+    };
+    std::vector<Todo> todo{{0, 0}};
+    while (!todo.empty()) {
+      const Todo t = todo.back();
+      todo.pop_back();
+      const BvhNode<T>& n = nodes[t.old_index];
+      if (n.is_leaf()) continue;
+      const auto first = std::uint32_t(out.size());
+      out.push_back(nodes[n.first]);
+      out.push_back(nodes[n.first + 1]);
+      out[t.new_index].first = first;
+      todo.push_back({n.first + 1, first + 1});
+      todo.push_back({n.first, first});
+    }
+    out.shrink_to_fit();
+    return out;
   }
 };
 
@@ -114,31 +191,35 @@ struct Builder {
 
 template <typename T>
 Bvh<T> build_bvh(const Scene& scene, const BvhBuildOptions& opts) {
-  Builder<T> b{opts, {}, {}, {}, {}, {}};
+  Builder<T> b{opts, {}, {}};
+  std::vector<Triangle<T>> tris;
+  tris.reserve(scene.triangle_count());
+  b.refs.reserve(scene.triangle_count());
+  BBox<T> box, cbox;
   for (std::uint32_t g = 0; g < scene.geometries().size(); ++g) {
     const Geometry& geo = scene.geometry(g);
     for (std::uint32_t p = 0; p < geo.triangles.size(); ++p) {
       const Tri& t = geo.triangles[p];
       const Vec3<T> v0(geo.vertices[t[0]]), v1(geo.vertices[t[1]]), v2(geo.vertices[t[2]]);
       if (is_degenerate(v0, v1, v2)) continue;
-      b.tris.push_back({v0, v1, v2, g, p});
-      BBox<T> box;
-      box.extend(v0), box.extend(v1), box.extend(v2);
-      b.tri_box.push_back(box);
-      b.centroid.push_back(box.center());
+      Ref<T> r;
+      r.box.extend(v0), r.box.extend(v1), r.box.extend(v2);
+      r.centroid = r.box.center();
+      r.tri = std::uint32_t(tris.size());
+      tris.push_back({v0, v1, v2, g, p});
+      box.extend(r.box);
+      cbox.extend(r.centroid);
+      b.refs.push_back(r);
     }
   }
   Bvh<T> bvh;
   bvh.scene_max_abs = scene.bounds().max_abs_coord();
-  if (b.tris.empty()) return bvh;
-  b.order.resize(b.tris.size());
-  std::iota(b.order.begin(), b.order.end(), 0u);
-  b.nodes.reserve(2 * b.tris.size());
-  b.nodes.emplace_back();
-  b.build(0, 0, std::uint32_t(b.tris.size()));
-  bvh.nodes = std::move(b.nodes);
-  bvh.tris.reserve(b.tris.size());
-  for (std::uint32_t i : b.order) bvh.tris.push_back(b.tris[i]);
+  if (tris.empty()) return bvh;
+  b.nodes.resize(2 * tris.size() - 1);
+  b.build(0, 0, std::uint32_t(tris.size()), 1, box, cbox);
+  bvh.nodes = b.compacted();
+  bvh.tris.reserve(tris.size());
+  for (const Ref<T>& r : b.refs) bvh.tris.push_back(tris[r.tri]);
   return bvh;
 }
 

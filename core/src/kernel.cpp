@@ -132,6 +132,18 @@ KernelKind checked_kind(const Accel& accel, KernelKind kind) {
 HitIterator::HitIterator(const Accel& accel, KernelKind kind, const KernelOptions& opts)
     : kind_(checked_kind(accel, kind)), impl_(make_impl(accel, kind, opts)) {}
 
+void HitIterator::begin(const Ray& ray, std::size_t max_hits) {
+  std::visit([&](auto& k) { k.begin(ray, max_hits); }, impl_);
+}
+
+bool HitIterator::next(Hit& out) {
+  return std::visit([&](auto& k) { return k.next(out); }, impl_);
+}
+
+Counters HitIterator::counters() const {
+  return std::visit([](const auto& k) { return k.counters; }, impl_);
+}
+
 void collect_hits(HitIterator& it, const Ray& ray, std::size_t max_hits, std::vector<Hit>& out) {
   it.begin(ray, max_hits);
   Hit h;

@@ -107,16 +107,12 @@ std::string unsupported_reason(const Accel& accel, KernelKind kind);
 class HitIterator {
  public:
   HitIterator(const Accel& accel, KernelKind kind, const KernelOptions& opts = {});
-  void begin(const Ray& ray, std::size_t max_hits = 0) {
-    std::visit([&](auto& k) { k.begin(ray, max_hits); }, impl_);
-  }
-  bool next(Hit& out) {
-    return std::visit([&](auto& k) { return k.next(out); }, impl_);
-  }
+  // Out of line: the kernels (and their traversal at every SIMD level) are compiled once, in
+  // kernel.cpp, not in every file that traces rays.
+  void begin(const Ray& ray, std::size_t max_hits = 0);
+  bool next(Hit& out);
   KernelKind kind() const { return kind_; }
-  Counters counters() const {
-    return std::visit([](const auto& k) { return k.counters; }, impl_);
-  }
+  Counters counters() const;
 
  private:
   KernelKind kind_;
