@@ -15,6 +15,7 @@ PACKAGES=(
   libdouble-conversion-dev libutfcpp-dev libboost-dev
   freecad pybind11-dev python3-dev python3-numpy xvfb xauth
   libgmp-dev clang libclang-rt-14-dev
+  python3-matplotlib
 )
 
 missing=()

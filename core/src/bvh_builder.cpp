@@ -57,7 +57,7 @@ struct Builder {
   // are not on the stack while the children are built.
   __attribute__((noinline)) Split<T> best_split(std::uint32_t begin, std::uint32_t end, const BBox<T>& cbox,
                                                 int nb) const {
-    std::array<std::array<BBox<T>, kMaxBins>, 3> bb{}, cb{};
+    std::array<std::array<BBox<T>, kMaxBins>, 3> bb{};
     std::array<std::array<std::uint32_t, kMaxBins>, 3> cnt{};
     const Vec3<T> ext = cbox.extent();
     bool active[3];
@@ -72,7 +72,6 @@ struct Builder {
         if (!active[a]) continue;
         const int k = bin_index(r.centroid[a], cbox.lo[a], scale[a], nb);
         bb[a][k].extend(r.box);
-        cb[a][k].extend(r.centroid);
         ++cnt[a][k];
       }
     }
@@ -99,14 +98,8 @@ struct Builder {
         if (cost < best.cost) best.cost = cost, best.axis = axis, best.bin = k;
       }
     }
-    if (best.axis >= 0) {  // the children's boxes, as unions of their bins' (exact: min and max)
-      for (int k = 0; k < nb; ++k) {
-        BBox<T>& box = k <= best.bin ? best.left : best.right;
-        BBox<T>& cbx = k <= best.bin ? best.left_centroids : best.right_centroids;
-        box.extend(bb[best.axis][k]);
-        cbx.extend(cb[best.axis][k]);
-      }
-    }
+    if (best.axis >= 0)  // the children's boxes, as unions of their bins' (exact: min and max)
+      for (int k = 0; k < nb; ++k) (k <= best.bin ? best.left : best.right).extend(bb[best.axis][k]);
     return best;
   }
 
@@ -140,11 +133,21 @@ struct Builder {
     }
     if (n <= std::uint32_t(opts.max_leaf_size) && leaf_cost <= split_cost) return make_leaf();
 
+    // Partition, gathering the children's centroid bounds on the way.
     const double scale = double(nb) / double(cbox.extent()[best.axis]);
-    auto* mid = std::partition(refs.data() + begin, refs.data() + end, [&](const Ref<T>& r) {
-      return bin_index(r.centroid[best.axis], cbox.lo[best.axis], scale, nb) <= best.bin;
-    });
-    split(index, begin, std::uint32_t(mid - refs.data()), end, desc, best);
+    Split<T> s = best;
+    std::uint32_t lo = begin, hi = end;
+    while (lo < hi) {
+      const Ref<T>& r = refs[lo];
+      if (bin_index(r.centroid[best.axis], cbox.lo[best.axis], scale, nb) <= best.bin) {
+        s.left_centroids.extend(r.centroid);
+        ++lo;
+      } else {
+        s.right_centroids.extend(r.centroid);
+        std::swap(refs[lo], refs[--hi]);
+      }
+    }
+    split(index, begin, lo, end, desc, s);
   }
 
   void split(std::uint32_t index, std::uint32_t begin, std::uint32_t mid, std::uint32_t end, std::uint32_t desc,

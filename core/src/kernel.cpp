@@ -80,19 +80,25 @@ std::optional<KernelKind> parse_kernel(std::string_view name) {
 }
 
 struct Accel::Lazy {
-  std::once_flag embree_once, bvh_double_once, wide_double_once;
+  std::once_flag bvh_once, embree_once, bvh_double_once, wide_double_once;
+  Bvhf bvh;
   std::unique_ptr<EmbreeAccel> embree;
   Bvhd bvh_double;
   WideBvhd wide_double;
 };
 
 Accel::Accel(const Scene& scene)
-    : scene_(&scene), bvh_(build_bvh<float>(scene)), wide_(build_wide_bvh(bvh_)), lazy_(std::make_unique<Lazy>()) {}
+    : scene_(&scene), wide_(build_wide_bvh(build_bvh<float>(scene))), lazy_(std::make_unique<Lazy>()) {}
 
 Accel::~Accel() = default;
 
+const Bvhf& Accel::bvh() const {
+  std::call_once(lazy_->bvh_once, [this] { lazy_->bvh = build_bvh<float>(*scene_); });
+  return lazy_->bvh;
+}
+
 const EmbreeAccel& Accel::embree() const {
-  std::call_once(lazy_->embree_once, [this] { lazy_->embree = std::make_unique<EmbreeAccel>(*scene_, bvh_.tris); });
+  std::call_once(lazy_->embree_once, [this] { lazy_->embree = std::make_unique<EmbreeAccel>(*scene_, bvh().tris); });
   return *lazy_->embree;
 }
 
@@ -107,7 +113,8 @@ const WideBvhd& Accel::wide_double() const {
 }
 
 std::size_t Accel::memory_bytes() const {
-  return bvh_.memory_bytes() + wide_.memory_bytes() + lazy_->bvh_double.memory_bytes() + lazy_->wide_double.memory_bytes();
+  return wide_.memory_bytes() + lazy_->bvh.memory_bytes() + lazy_->bvh_double.memory_bytes() +
+         lazy_->wide_double.memory_bytes();
 }
 
 std::string unsupported_reason(const Accel& accel, KernelKind kind) {

@@ -67,24 +67,24 @@ struct KernelOptions {
   double epsilon_rel = 1e-5;  // epsilon kernel only: relative to the scene diagonal
 };
 
-// A scene with the acceleration structures the kernels need, each built on first use
-// (thread-safe): Pierce's wide BVH in float (built with the Accel, since every Pierce kernel and
-// query uses it), the double one for the *_d kernels, and Embree's scenes for the embree-* and
-// epsilon kernels. So a run of an own-BVH kernel builds no Embree scene and no double BVH.
+// A scene with the acceleration structures the kernels need. The float wide BVH is built with the
+// Accel (every Pierce kernel uses it; the binary tree it is collapsed from is dropped at once). The
+// rest is built on first use (thread-safe): the binary float BVH (origin offsets, Embree's exact
+// user geometry), the double BVHs (the *_d kernels, CSG) and Embree's scenes (embree-*, epsilon).
+// So a run of an own-BVH kernel builds no Embree scene, no double BVH and keeps no binary tree.
 class Accel {
  public:
   explicit Accel(const Scene& scene);
   ~Accel();
-  // Neither copyable nor movable: the Embree scenes keep pointers to bvh_'s triangles.
+  // Neither copyable nor movable: the Embree scenes keep pointers to the binary BVH's triangles.
   Accel(const Accel&) = delete;
   Accel& operator=(const Accel&) = delete;
   const Scene& scene() const { return *scene_; }
-  // The binary BVH the wide one is collapsed from (closest-point queries and origin offsets).
-  const Bvhf& bvh() const { return bvh_; }
   const WideBvhf& wide() const { return wide_; }
+  // The binary float BVH (the same tree the wide one was collapsed from), built on the first call.
+  const Bvhf& bvh() const;
   const EmbreeAccel& embree() const;
-  // Double-precision BVHs, built on the first call: the binary one (CSG's box queries) and the
-  // wide one collapsed from it (the *_d kernels).
+  // Double-precision BVHs: the binary one (CSG's box queries) and the wide one (the *_d kernels).
   const Bvhd& bvh_double() const;
   const WideBvhd& wide_double() const;
   // Bytes held by the structures built so far.
@@ -93,7 +93,6 @@ class Accel {
  private:
   struct Lazy;
   const Scene* scene_;
-  Bvhf bvh_;
   WideBvhf wide_;
   std::unique_ptr<Lazy> lazy_;
 };
