@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <cstddef>
+#include <memory>
+#include <new>
+#include <type_traits>
 #include <numeric>
 
 #include <tbb/parallel_invoke.h>
@@ -30,7 +34,7 @@ template <typename T>
 struct Ref {
   BBox<T> box;
   Vec3<T> centroid;
-  std::uint32_t tri;
+  std::uint32_t geom, prim;
 };
 
 template <typename T>
@@ -44,7 +48,13 @@ template <typename T>
 struct Builder {
   const BvhBuildOptions& opts;
   std::vector<Ref<T>> refs;
-  std::vector<BvhNode<T>> nodes;
+  // 2m - 1 slots for m triangles, most never written: allocated without initialising, so the
+  // pages of the gaps are never touched.
+  std::unique_ptr<std::byte[]> slots;
+  static_assert(std::is_trivially_destructible_v<BvhNode<T>>);
+  BvhNode<T>& node(std::uint32_t i) const {
+    return *std::launder(reinterpret_cast<BvhNode<T>*>(slots.get() + std::size_t(i) * sizeof(BvhNode<T>)));
+  }
 
   void bounds_of(std::uint32_t begin, std::uint32_t end, BBox<T>& box, BBox<T>& cbox) const {
     for (std::uint32_t i = begin; i < end; ++i) {
@@ -109,11 +119,11 @@ struct Builder {
   // parallel with a layout that does not depend on the schedule (the gaps are squeezed out after).
   void build(std::uint32_t index, std::uint32_t begin, std::uint32_t end, std::uint32_t desc, const BBox<T>& box,
              const BBox<T>& cbox) {
-    nodes[index].box = box;
+    new (&node(index)) BvhNode<T>{box, 0, 0};
     const std::uint32_t n = end - begin;
     auto make_leaf = [&] {
-      nodes[index].first = begin;
-      nodes[index].count = n;
+      node(index).first = begin;
+      node(index).count = n;
     };
     if (n <= 1) return make_leaf();
 
@@ -152,8 +162,8 @@ struct Builder {
 
   void split(std::uint32_t index, std::uint32_t begin, std::uint32_t mid, std::uint32_t end, std::uint32_t desc,
              const Split<T>& s) {
-    nodes[index].first = desc;
-    nodes[index].count = 0;
+    node(index).first = desc;
+    node(index).count = 0;
     const std::uint32_t left_desc = desc + 2, right_desc = left_desc + 2 * (mid - begin) - 2;
     auto left = [&] { build(desc, begin, mid, left_desc, s.left, s.left_centroids); };
     auto right = [&] { build(desc + 1, mid, end, right_desc, s.right, s.right_centroids); };
@@ -168,7 +178,7 @@ struct Builder {
   // The tree without the unused slots, in depth-first order (siblings stay adjacent).
   std::vector<BvhNode<T>> compacted() const {
     std::vector<BvhNode<T>> out;
-    out.push_back(nodes[0]);
+    out.push_back(node(0));
     struct Todo {
       std::uint32_t old_index, new_index;
     };
@@ -176,11 +186,11 @@ struct Builder {
     while (!todo.empty()) {
       const Todo t = todo.back();
       todo.pop_back();
-      const BvhNode<T>& n = nodes[t.old_index];
+      const BvhNode<T>& n = node(t.old_index);
       if (n.is_leaf()) continue;
       const auto first = std::uint32_t(out.size());
-      out.push_back(nodes[n.first]);
-      out.push_back(nodes[n.first + 1]);
+      out.push_back(node(n.first));
+      out.push_back(node(n.first + 1));
       out[t.new_index].first = first;
       todo.push_back({n.first + 1, first + 1});
       todo.push_back({n.first, first});
@@ -195,8 +205,6 @@ struct Builder {
 template <typename T>
 Bvh<T> build_bvh(const Scene& scene, const BvhBuildOptions& opts) {
   Builder<T> b{opts, {}, {}};
-  std::vector<Triangle<T>> tris;
-  tris.reserve(scene.triangle_count());
   b.refs.reserve(scene.triangle_count());
   BBox<T> box, cbox;
   for (std::uint32_t g = 0; g < scene.geometries().size(); ++g) {
@@ -208,8 +216,7 @@ Bvh<T> build_bvh(const Scene& scene, const BvhBuildOptions& opts) {
       Ref<T> r;
       r.box.extend(v0), r.box.extend(v1), r.box.extend(v2);
       r.centroid = r.box.center();
-      r.tri = std::uint32_t(tris.size());
-      tris.push_back({v0, v1, v2, g, p});
+      r.geom = g, r.prim = p;
       box.extend(r.box);
       cbox.extend(r.centroid);
       b.refs.push_back(r);
@@ -217,12 +224,18 @@ Bvh<T> build_bvh(const Scene& scene, const BvhBuildOptions& opts) {
   }
   Bvh<T> bvh;
   bvh.scene_max_abs = scene.bounds().max_abs_coord();
-  if (tris.empty()) return bvh;
-  b.nodes.resize(2 * tris.size() - 1);
-  b.build(0, 0, std::uint32_t(tris.size()), 1, box, cbox);
+  const std::size_t n = b.refs.size();
+  if (n == 0) return bvh;
+  b.slots = std::make_unique_for_overwrite<std::byte[]>((2 * n - 1) * sizeof(BvhNode<T>));
+  b.build(0, 0, std::uint32_t(n), 1, box, cbox);
   bvh.nodes = b.compacted();
-  bvh.tris.reserve(tris.size());
-  for (const Ref<T>& r : b.refs) bvh.tris.push_back(tris[r.tri]);
+  b.slots.reset();
+  bvh.tris.reserve(n);
+  for (const Ref<T>& r : b.refs) {
+    const Geometry& geo = scene.geometry(r.geom);
+    const Tri& t = geo.triangles[r.prim];
+    bvh.tris.push_back({Vec3<T>(geo.vertices[t[0]]), Vec3<T>(geo.vertices[t[1]]), Vec3<T>(geo.vertices[t[2]]), r.geom, r.prim});
+  }
   return bvh;
 }
 
