@@ -18,6 +18,8 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -92,12 +94,21 @@ struct Cell {
   std::optional<std::uint64_t> odd_rays;    // closed scenes, all hits: rays with an odd number of hits
 };
 
+// A cell's work, kept until every row is set up: the repetitions of all cells are then interleaved
+// (every cell's first repetition, then every cell's second, ...), so that a change of the machine's
+// load during the run falls on every row alike and the ratios of the medians stay fair.
+struct CellJob {
+  std::function<Tally(Cell&, std::size_t, std::size_t)> pass;  // rays [begin, end); fills the cell's per-ray arrays
+  std::function<Counters()> counters;                          // summed over the cell's iterators
+};
+
 struct Row {
   std::string kernel;
   bool exact = true;
   bool reference = false;
   std::optional<KernelKind> kind;  // empty for the plain Embree reference rows
   std::vector<Cell> cells;
+  std::vector<CellJob> jobs;  // one per cell
 };
 
 struct Settings {
@@ -105,30 +116,40 @@ struct Settings {
   int reps = 3;
 };
 
-// Warm up once on the first eighth of the rays, then time `reps` passes over all of them.
-template <typename Pass, typename CounterSum>
-Cell time_cell(std::size_t max_hits, std::size_t ray_count, int reps, Pass&& pass, CounterSum&& counter_sum) {
-  Cell c;
-  c.max_hits = max_hits;
-  c.ray_hash.assign(ray_count, 0);
-  c.ray_hits.assign(ray_count, 0);
-  pass(c, 0, std::max<std::size_t>(1, ray_count / 8));
-  const Counters before = counter_sum();
-  for (int r = 0; r < reps; ++r) {
-    const auto t0 = Clock::now();
-    const Tally t = pass(c, 0, ray_count);
-    c.seconds.push_back(seconds_since(t0));
-    if (r == 0) c.tally = t;
-    else if (!(t == c.tally)) c.deterministic = false;
-  }
-  const Counters after = counter_sum();
-  c.counters = {after.node_tests - before.node_tests, after.traversal_steps - before.traversal_steps,
-                after.prim_tests - before.prim_tests, after.valid_hits - before.valid_hits,
-                after.leaf_visits - before.leaf_visits};
-  std::vector<double> s = c.seconds;
-  std::sort(s.begin(), s.end());
-  c.median_seconds = s[s.size() / 2];
-  return c;
+// Every cell of every row: a warm-up on the first eighth of the rays, then `reps` timed passes
+// over all of them, interleaved across cells (see CellJob).
+void time_rows(std::vector<Row>& rows, std::size_t ray_count, int reps) {
+  std::vector<Counters> before;
+  for (Row& row : rows)
+    for (std::size_t c = 0; c < row.cells.size(); ++c) {
+      Cell& cell = row.cells[c];
+      cell.ray_hash.assign(ray_count, 0);
+      cell.ray_hits.assign(ray_count, 0);
+      row.jobs[c].pass(cell, 0, std::max<std::size_t>(1, ray_count / 8));
+      before.push_back(row.jobs[c].counters());
+    }
+  for (int r = 0; r < reps; ++r)
+    for (Row& row : rows)
+      for (std::size_t c = 0; c < row.cells.size(); ++c) {
+        Cell& cell = row.cells[c];
+        const auto t0 = Clock::now();
+        const Tally t = row.jobs[c].pass(cell, 0, ray_count);
+        cell.seconds.push_back(seconds_since(t0));
+        if (r == 0) cell.tally = t;
+        else if (!(t == cell.tally)) cell.deterministic = false;
+      }
+  std::size_t k = 0;
+  for (Row& row : rows)
+    for (std::size_t c = 0; c < row.cells.size(); ++c, ++k) {
+      Cell& cell = row.cells[c];
+      const Counters after = row.jobs[c].counters();
+      cell.counters = {after.node_tests - before[k].node_tests, after.traversal_steps - before[k].traversal_steps,
+                       after.prim_tests - before[k].prim_tests, after.valid_hits - before[k].valid_hits,
+                       after.leaf_visits - before[k].leaf_visits};
+      std::vector<double> sorted = cell.seconds;
+      std::sort(sorted.begin(), sorted.end());
+      cell.median_seconds = sorted[sorted.size() / 2];
+    }
 }
 
 constexpr std::size_t kGrain = 256;
@@ -136,15 +157,15 @@ constexpr std::size_t kGrain = 256;
 // One reference row of plain Embree code; `query(ray, n, hits)` appends the first n hits (0 = all).
 template <typename Query>
 Row run_reference(const std::string& name, const std::vector<std::size_t>& columns, const std::vector<Ray>& rays,
-                  const Settings& st, Query&& query) {
-  Row row{name, false, true, std::nullopt, {}};
-  tbb::enumerable_thread_specific<std::vector<Hit>> buffers;
+                  Query query) {
+  Row row{name, false, true, std::nullopt, {}, {}};
+  auto buffers = std::make_shared<tbb::enumerable_thread_specific<std::vector<Hit>>>();
   for (const std::size_t n : columns) {
-    auto pass = [&](Cell& cell, std::size_t begin, std::size_t end) {
+    auto pass = [buffers, query, &rays, n](Cell& cell, std::size_t begin, std::size_t end) {
       tbb::enumerable_thread_specific<Tally> local;
       tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, kGrain), [&](const auto& range) {
         Tally& t = local.local();
-        std::vector<Hit>& hits = buffers.local();
+        std::vector<Hit>& hits = buffers->local();
         for (std::size_t i = range.begin(); i != range.end(); ++i) {
           hits.clear();
           query(rays[i], n, hits);
@@ -154,13 +175,17 @@ Row run_reference(const std::string& name, const std::vector<std::size_t>& colum
       });
       return local.combine([](Tally a, const Tally& b) { return a += b; });
     };
-    row.cells.push_back(time_cell(n, rays.size(), st.reps, pass, [] { return Counters{}; }));
+    Cell cell;
+    cell.max_hits = n;
+    row.cells.push_back(std::move(cell));
+    row.jobs.push_back({pass, [] { return Counters{}; }});
   }
   return row;
 }
 
 std::vector<Row> run_references(const EmbreeReference& plain, const EmbreeReference& robust,
                                 const std::vector<Ray>& rays, const Settings& st) {
+  // Copied into each cell's job: the references outlive the timing (they live in run_scene).
   std::vector<Row> rows;
   auto first = [](const EmbreeReference& e) {
     return [&e](const Ray& r, std::size_t, std::vector<Hit>& hits) {
@@ -168,30 +193,30 @@ std::vector<Row> run_references(const EmbreeReference& plain, const EmbreeRefere
       if (e.first_hit(r, h)) hits.push_back(h);
     };
   };
-  rows.push_back(run_reference("embree first hit", {1}, rays, st, first(plain)));
-  rows.push_back(run_reference("embree robust 1st", {1}, rays, st, first(robust)));
-  rows.push_back(run_reference("embree all-hits", st.columns, rays, st,
-                               [&](const Ray& r, std::size_t n, std::vector<Hit>& hits) { plain.all_hits(r, n, hits); }));
-  rows.push_back(run_reference("embree lex-restart", st.columns, rays, st, [&](const Ray& r, std::size_t n,
-                                                                              std::vector<Hit>& hits) {
-    plain.restart_hits(r, n, hits);
-  }));
+  const EmbreeReference* p = &plain;
+  rows.push_back(run_reference("embree first hit", {1}, rays, first(plain)));
+  rows.push_back(run_reference("embree robust 1st", {1}, rays, first(robust)));
+  rows.push_back(run_reference("embree all-hits", st.columns, rays,
+                               [p](const Ray& r, std::size_t n, std::vector<Hit>& hits) { p->all_hits(r, n, hits); }));
+  rows.push_back(run_reference("embree lex-restart", st.columns, rays,
+                               [p](const Ray& r, std::size_t n, std::vector<Hit>& hits) { p->restart_hits(r, n, hits); }));
   return rows;
 }
 
 Row run_kernel(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays, const Settings& st) {
-  Row row{std::string(kernel_name(kind)), is_exact(kind), false, kind, {}};
+  Row row{std::string(kernel_name(kind)), is_exact(kind), false, kind, {}, {}};
   struct Worker {
     HitIterator it;
     std::vector<Hit> hits;
   };
+  using Workers = tbb::enumerable_thread_specific<Worker>;
   for (const std::size_t n : st.columns) {
     // Fresh iterators per cell so the counters of one cell never mix with another's.
-    tbb::enumerable_thread_specific<Worker> workers([&] { return Worker{HitIterator(accel, kind), {}}; });
-    auto pass = [&](Cell& cell, std::size_t begin, std::size_t end) {
+    auto workers = std::make_shared<Workers>([&accel, kind] { return Worker{HitIterator(accel, kind), {}}; });
+    auto pass = [workers, &rays, n](Cell& cell, std::size_t begin, std::size_t end) {
       tbb::enumerable_thread_specific<Tally> local;
       tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, kGrain), [&](const auto& range) {
-        Worker& w = workers.local();
+        Worker& w = workers->local();
         Tally& t = local.local();
         for (std::size_t i = range.begin(); i != range.end(); ++i) {
           w.hits.clear();
@@ -202,12 +227,15 @@ Row run_kernel(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays
       });
       return local.combine([](Tally a, const Tally& b) { return a += b; });
     };
-    auto counter_sum = [&] {
+    auto counter_sum = [workers] {
       Counters c;
-      for (const Worker& w : workers) c += w.it.counters();
+      for (const Worker& w : *workers) c += w.it.counters();
       return c;
     };
-    row.cells.push_back(time_cell(n, rays.size(), st.reps, pass, counter_sum));
+    Cell cell;
+    cell.max_hits = n;
+    row.cells.push_back(std::move(cell));
+    row.jobs.push_back({pass, counter_sum});
   }
   return row;
 }
@@ -525,13 +553,11 @@ SceneResult run_scene(const BenchScene& s, const std::vector<KernelKind>& kernel
   r.embree_robust_build_s = robust.build_seconds();
   r.embree_bytes = plain.bytes();
 
-  std::cerr << "[" << s.name << "] plain Embree rows\n";
   r.rows = run_references(plain, robust, s.rays, st);
+  for (const KernelKind k : kernels) r.rows.push_back(run_kernel(accel, k, s.rays, st));
+  std::cerr << "[" << s.name << "] timing " << r.rows.size() << " rows, repetitions interleaved\n";
+  time_rows(r.rows, s.rays.size(), st.reps);
   r.reference_mrays = mrays_per_s(r.rows.front().cells[0], s.rays.size());
-  for (const KernelKind k : kernels) {
-    std::cerr << "[" << s.name << "] " << kernel_name(k) << "\n";
-    r.rows.push_back(run_kernel(accel, k, s.rays, st));
-  }
   check_agreement(r, st);
   count_wrong_rays(r);
   return r;
@@ -563,8 +589,26 @@ int run(int argc, char** argv) {
                        ->check(CLI::Range(1, 100));
   app.add_option("--kernels", kernel_list, "comma-separated kernel rows to run (default: all)");
   app.add_option("--seed", seed, "seed of the scenes and rays (default 1)");
+  std::string column_list;
+  app.add_option("--columns", column_list, "comma-separated N of the columns, 0 or all = all hits (default 1,5,15,all)");
   CLI11_PARSE(app, argc, argv);
 
+  if (!column_list.empty()) {
+    st.columns.clear();
+    std::stringstream ss(column_list);
+    for (std::string c; std::getline(ss, c, ',');) {
+      if (c == "all" || c == "0") {
+        st.columns.push_back(0);
+        continue;
+      }
+      try {
+        st.columns.push_back(std::stoul(c));
+      } catch (const std::exception&) {
+        std::cerr << "error: --columns: '" << c << "' is not a number or 'all'\n";
+        return 2;
+      }
+    }
+  }
   std::vector<KernelKind> kernels;
   if (kernel_list.empty()) {
     kernels.assign(std::begin(kRowOrder), std::end(kRowOrder));
