@@ -6,7 +6,8 @@
 //  - the active range [lo(), hi()] for box and triangle tests, and cull_bound(): a node entered
 //    beyond it is not traversed but reported to culled() (node culling, Gribble 2016; the
 //    buffered kernel keeps such nodes for a later pass);
-//  - suspend(next_tn, pending): stop before the next node, keeping the state (queue, buffered);
+//  - suspend(next_tn, pending): stop before the next node, keeping the state (queue, buffered;
+//    only called where the policy sets kSuspends);
 //  - node(ref, tn): Gribble's every-node callback, called for each node traversed;
 //  - hit(block, lane, th): the leaf callback, called for every triangle the exact test accepts
 //    within the active range.
@@ -178,35 +179,78 @@ inline void detail_prefetch_leaves(const TriBlock<T>* blocks, std::uint32_t mask
   }
 }
 
-// The traversal loop with the node and leaf tests of `Ops`. Returns true when every pending node
-// is done, false when the policy suspended it (the next node is back on `pending`).
-template <class Ops, typename T, class Policy>
-inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, NodeHeap<T>& pending, Policy& p,
-                          Counters& c);
+// The pending nodes as the loop sees them. A stack is worked on through locals (buffer pointer and
+// depth in registers) and written back whenever the policy looks at it and on return; a heap is
+// used as it is.
+template <typename T>
+class StackCursor {
+ public:
+  static constexpr bool kOrdered = false;
+  explicit StackCursor(NodeStack<T>& s) : s_(s), base_(s.data()), sp_(s.size()) {}
+  bool empty() const { return sp_ == 0; }
+  T next_tn() const { return base_[sp_ - 1].tn; }
+  NodeEntry<T> pop() { return base_[--sp_]; }
+  void push(NodeEntry<T> e) { base_[sp_++] = e; }
+  const NodeStack<T>& sync() {
+    s_.set_size(sp_);
+    return s_;
+  }
 
-// A stack works on locals (buffer pointer and depth in registers), written back on return.
-template <class Ops, typename T, class Pending, class Policy>
-inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Pending& pending, Policy& p,
+ private:
+  NodeStack<T>& s_;
+  NodeEntry<T>* base_;
+  std::size_t sp_;
+};
+
+template <typename T>
+class HeapCursor {
+ public:
+  static constexpr bool kOrdered = true;
+  explicit HeapCursor(NodeHeap<T>& h) : h_(h) {}
+  bool empty() const { return h_.empty(); }
+  T next_tn() const { return h_.next_tn(); }
+  NodeEntry<T> pop() { return h_.pop(); }
+  void push(NodeEntry<T> e) { h_.push(e); }
+  const NodeHeap<T>& sync() { return h_; }
+
+ private:
+  NodeHeap<T>& h_;
+};
+
+template <typename T>
+StackCursor<T> cursor(NodeStack<T>& s) {
+  return StackCursor<T>(s);
+}
+template <typename T>
+HeapCursor<T> cursor(NodeHeap<T>& h) {
+  return HeapCursor<T>(h);
+}
+
+// The traversal loop with the node and leaf tests of `Ops`. Returns true when every pending node
+// is done, false when the policy suspended it (the next node is back on `container`).
+template <class Ops, typename T, class Container, class Policy>
+inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Container& container, Policy& p,
                           Counters& c) {
   (void)c;
   const Ops ops(r);
   const WideNode<T>* const nodes = bvh.nodes.data();
   const TriBlock<T>* const blocks = bvh.blocks.data();
-  NodeEntry<T>* const stack = pending.data();
-  std::size_t sp = pending.size();
+  auto pending = cursor(container);
   NodeEntry<T> cur{};
-  bool have = false;  // `cur` is a child descended into directly, not taken from the stack
+  bool have = false;  // `cur` is a child descended into directly, not taken from `pending`
   for (;;) {
-    if constexpr (Policy::kSuspends) pending.set_size(sp);
     if (!have) {
-      if (sp == 0) return true;
+      if (pending.empty()) {
+        pending.sync();
+        return true;
+      }
       if constexpr (Policy::kSuspends)
-        if (p.suspend(stack[sp - 1].tn, pending)) return false;
-      cur = stack[--sp];
+        if (p.suspend(pending.next_tn(), pending.sync())) return false;
+      cur = pending.pop();
     } else if constexpr (Policy::kSuspends) {
-      if (p.suspend(cur.tn, pending)) {
-        stack[sp++] = cur;
-        pending.set_size(sp);
+      if (p.suspend(cur.tn, pending.sync())) {
+        pending.push(cur);
+        pending.sync();
         return false;
       }
     }
@@ -230,70 +274,32 @@ inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Pendi
     if constexpr (Policy::kCullsInRange) mask = detail_cull(p, mask, tn);
     if (mask == 0) continue;
     detail_prefetch_leaves(blocks, mask, child);
-    // Far to near, so the next nearest is popped first; the nearest is descended into directly.
-    while (mask & (mask - 1)) {
-      const int k = 31 - __builtin_clz(mask);
-      stack[sp++] = {tn[k], child[k]};
-      mask ^= 1u << k;
-    }
-    const int k = __builtin_ctz(mask);
-    cur = {tn[k], child[k]};
-    have = true;
-  }
-}
-
-template <class Ops, typename T, class Policy>
-inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, NodeHeap<T>& pending, Policy& p,
-                          Counters& c) {
-  (void)c;
-  const Ops ops(r);
-  const WideNode<T>* const nodes = bvh.nodes.data();
-  const TriBlock<T>* const blocks = bvh.blocks.data();
-  NodeEntry<T> cur{};
-  bool have = false;  // `cur` is a child descended into directly, not taken from the heap
-  for (;;) {
-    if (!have) {
-      if (pending.empty()) return true;
-      if (p.suspend(pending.next_tn(), pending)) return false;
-      cur = pending.pop();
-    } else if (p.suspend(cur.tn, pending)) {
-      pending.push(cur);
-      return false;
-    }
-    have = false;
-    if (cur.tn > p.cull_bound()) {
-      p.culled(cur.tn);
-      continue;
-    }
-    PIERCE_COUNT(c, traversal_steps, 1);
-    p.node(cur.ref, cur.tn);
-
-    if (is_leaf(cur.ref)) {
-      detail_leaf<Ops>(ops, blocks, cur.ref, r, p, c);
-      continue;
-    }
-    alignas(32) T tn[kWideArity];
-    alignas(32) NodeRef child[kWideArity];
-    std::uint32_t mask = ops.node_hits(nodes[cur.ref], p.lo(), p.hi(), tn, child);
-    PIERCE_COUNT(c, node_tests, std::uint64_t(__builtin_popcount(nodes[cur.ref].valid())));
-    if constexpr (Policy::kCullsInRange) mask = detail_cull(p, mask, tn);
-    if (mask == 0) continue;
-    detail_prefetch_leaves(blocks, mask, child);
-    // Descend into the nearest child directly unless a pending node is nearer still.
-    int nearest = __builtin_ctz(mask);
-    for (std::uint32_t m = mask & (mask - 1); m != 0; m &= m - 1) {
-      const int k = __builtin_ctz(m);
-      if (tn[k] < tn[nearest]) {
-        pending.push({tn[nearest], child[nearest]});
-        nearest = k;
-      } else {
-        pending.push({tn[k], child[k]});
+    if constexpr (decltype(pending)::kOrdered) {
+      // Descend into the nearest child directly unless a pending node is nearer still.
+      int nearest = __builtin_ctz(mask);
+      for (std::uint32_t m = mask & (mask - 1); m != 0; m &= m - 1) {
+        const int k = __builtin_ctz(m);
+        if (tn[k] < tn[nearest]) {
+          pending.push({tn[nearest], child[nearest]});
+          nearest = k;
+        } else {
+          pending.push({tn[k], child[k]});
+        }
       }
-    }
-    cur = {tn[nearest], child[nearest]};
-    if (!pending.empty() && pending.next_tn() < cur.tn) {
-      pending.push(cur);
-      cur = pending.pop();
+      cur = {tn[nearest], child[nearest]};
+      if (!pending.empty() && pending.next_tn() < cur.tn) {
+        pending.push(cur);
+        cur = pending.pop();
+      }
+    } else {
+      // Far to near, so the next nearest is popped first; the nearest is descended into directly.
+      while (mask & (mask - 1)) {
+        const int k = 31 - __builtin_clz(mask);
+        pending.push({tn[k], child[k]});
+        mask ^= 1u << k;
+      }
+      const int k = __builtin_ctz(mask);
+      cur = {tn[k], child[k]};
     }
     have = true;
   }

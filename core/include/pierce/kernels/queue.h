@@ -50,6 +50,7 @@ class QueueKernel {
   };
   // Every hit goes into the hit heap; traversal stops once the closest one is safe to return.
   struct Gather : TraversalPolicy<T> {
+    static constexpr bool kSuspends = true;
     QueueKernel& k;
     explicit Gather(QueueKernel& kernel) : k(kernel) {}
     T lo() const { return k.ray_.tmin; }
