@@ -47,7 +47,7 @@ def hits_points(table):
     return {table["max_hits"]: pts}
 
 
-def draw(title, columns, path):
+def draw(title, columns, path, ylabel="wrong rays per million"):
     cols = [n for n in columns if columns[n]]
     fig, axes = plt.subplots(1, len(cols), figsize=(5.2 * len(cols), 4.4), squeeze=False)
     for ax, n in zip(axes[0], cols):
@@ -58,8 +58,9 @@ def draw(title, columns, path):
             ax.annotate(kernel, (ns, wrong), textcoords="offset points", xytext=(4, 4), fontsize=7)
         ax.set_xscale("log")
         ax.set_yscale("symlog", linthresh=1.0)
+        ax.set_ylim(bottom=-0.3)
         ax.set_xlabel("time per ray (ns, log)")
-        ax.set_ylabel("wrong rays per million")
+        ax.set_ylabel(ylabel)
         ax.set_title(f"N = {n}")
         ax.grid(True, which="both", alpha=0.3)
     fig.suptitle(title + "   (blue: exact, red: inexact Pierce kernel, grey: plain Embree code)", fontsize=9)
@@ -83,16 +84,18 @@ def main():
 
     if "scenes" in data:
         jobs = [(f"{s['name']}: {s['triangles']} triangles, {s['rays']} rays", bench_points(s),
-                 f"{args.out}_{s['name']}.png") for s in data["scenes"]]
+                 f"{args.out}_{s['name']}.png", "wrong rays per million (hit list not the exact one)")
+                for s in data["scenes"]]
     elif data.get("source") == "pierce hits --kernel all":
-        jobs = [(f"pierce hits --kernel all: {data['rays']} rays", hits_points(data), f"{args.out}_hits.png")]
+        jobs = [(f"pierce hits --kernel all: {data['rays']} rays", hits_points(data), f"{args.out}_hits.png",
+                 "rays per million differing from the exact consensus (t included)")]
     else:
         sys.exit(f"plot_cost.py: {args.json}: neither a pierce_bench_kernels nor a pierce hits --json file")
-    for _, _, path in jobs:
+    for _, _, path, _ in jobs:
         if os.path.exists(path) and not args.force:
             sys.exit(f"plot_cost.py: {path} exists; pass --force to overwrite it")
-    for title, columns, path in jobs:
-        draw(title, columns, path)
+    for title, columns, path, ylabel in jobs:
+        draw(title, columns, path, ylabel)
 
 
 if __name__ == "__main__":
