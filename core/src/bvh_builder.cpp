@@ -9,7 +9,10 @@
 #include <type_traits>
 #include <numeric>
 
+#include <embree3/rtcore.h>
 #include <tbb/parallel_invoke.h>
+
+#include <cmath>
 
 namespace pierce {
 
@@ -200,6 +203,136 @@ struct Builder {
   }
 };
 
+// ---------------------------------------------------------------- Embree's builder
+// rtcBuildBVH builds a binary tree of these in its thread-local allocators; the tree is then
+// copied into Pierce's node array (siblings adjacent, preorder) and its boxes recomputed exactly.
+struct EmbreeHeader {
+  std::uint32_t leaf_count;  // 0 for an inner node
+};
+struct EmbreeInner {
+  EmbreeHeader h;
+  void* child[2];
+};
+std::uint32_t* leaf_refs(void* leaf) { return reinterpret_cast<std::uint32_t*>(static_cast<char*>(leaf) + sizeof(EmbreeHeader)); }
+
+void* embree_create_node(RTCThreadLocalAllocator alloc, unsigned int /*children*/, void* /*user*/) {
+  return new (rtcThreadLocalAlloc(alloc, sizeof(EmbreeInner), 16)) EmbreeInner{{0}, {nullptr, nullptr}};
+}
+void embree_set_children(void* node, void** children, unsigned int count, void* /*user*/) {
+  auto* n = static_cast<EmbreeInner*>(node);
+  for (unsigned int i = 0; i < count && i < 2; ++i) n->child[i] = children[i];
+}
+void embree_set_bounds(void*, const RTCBounds**, unsigned int, void*) {}  // recomputed exactly afterwards
+void* embree_create_leaf(RTCThreadLocalAllocator alloc, const RTCBuildPrimitive* prims, size_t count, void* /*user*/) {
+  void* leaf = rtcThreadLocalAlloc(alloc, sizeof(EmbreeHeader) + sizeof(std::uint32_t) * std::max<size_t>(count, 1), 16);
+  new (leaf) EmbreeHeader{std::uint32_t(count)};
+  for (size_t i = 0; i < count; ++i) leaf_refs(leaf)[i] = prims[i].primID;
+  return leaf;
+}
+
+// Float bounds containing [lo, hi] (exact for float input).
+float round_down(double x) {
+  const auto f = float(x);
+  return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+float round_up(double x) {
+  const auto f = float(x);
+  return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+
+RTCDevice builder_device() {
+  static const RTCDevice device = rtcNewDevice("threads=0");  // stateless for rtcBuildBVH; shared
+  return device;
+}
+
+// The tree Embree's builder chooses over `refs`, as Pierce nodes with exact boxes; `order` gets the
+// refs in leaf order. False (and nothing written) if Embree failed or lost or repeated a primitive,
+// or made a leaf beyond what the wide collapse takes.
+template <typename T>
+bool build_with_embree(const std::vector<Ref<T>>& refs, const BvhBuildOptions& opts, std::vector<BvhNode<T>>& nodes,
+                       std::vector<std::uint32_t>& order) {
+  const RTCDevice device = builder_device();
+  if (device == nullptr) return false;
+  std::vector<RTCBuildPrimitive> prims(refs.size());
+  for (std::size_t i = 0; i < refs.size(); ++i) {
+    const BBox<T>& b = refs[i].box;
+    prims[i] = {round_down(double(b.lo.x)), round_down(double(b.lo.y)), round_down(double(b.lo.z)), 0,
+                round_up(double(b.hi.x)),   round_up(double(b.hi.y)),   round_up(double(b.hi.z)),   std::uint32_t(i)};
+  }
+  RTCBVH bvh = rtcNewBVH(device);
+  RTCBuildArguments args = rtcDefaultBuildArguments();
+  args.buildQuality = RTC_BUILD_QUALITY_MEDIUM;
+  args.maxBranchingFactor = 2;
+  args.minLeafSize = 1;
+  args.maxLeafSize = std::uint32_t(std::clamp(opts.max_leaf_size, 1, 32));
+  args.traversalCost = opts.traversal_cost;
+  args.intersectionCost = 1.0f;
+  args.bvh = bvh;
+  args.primitives = prims.data();
+  args.primitiveCount = prims.size();
+  args.primitiveArrayCapacity = prims.size();
+  args.createNode = embree_create_node;
+  args.setNodeChildren = embree_set_children;
+  args.setNodeBounds = embree_set_bounds;
+  args.createLeaf = embree_create_leaf;
+  void* root = rtcBuildBVH(&args);
+  bool ok = root != nullptr && rtcGetDeviceError(device) == RTC_ERROR_NONE;
+
+  std::vector<BvhNode<T>> out;
+  std::vector<std::uint32_t> leaf_order;
+  if (ok) {
+    out.reserve(refs.size());
+    leaf_order.reserve(refs.size());
+    out.emplace_back();
+    std::vector<std::pair<void*, std::uint32_t>> todo{{root, 0}};
+    while (!todo.empty() && ok) {
+      const auto [ptr, index] = todo.back();
+      todo.pop_back();
+      const auto* h = static_cast<const EmbreeHeader*>(ptr);
+      if (h->leaf_count > 0) {
+        if (h->leaf_count > 256) ok = false;  // beyond the wide collapse's leaves
+        out[index].first = std::uint32_t(leaf_order.size());
+        out[index].count = h->leaf_count;
+        for (std::uint32_t i = 0; i < h->leaf_count; ++i) leaf_order.push_back(leaf_refs(ptr)[i]);
+        continue;
+      }
+      const auto* n = static_cast<const EmbreeInner*>(ptr);
+      if (n->child[0] == nullptr || n->child[1] == nullptr) {
+        ok = false;
+        break;
+      }
+      const auto first = std::uint32_t(out.size());
+      out[index].first = first;
+      out[index].count = 0;
+      out.emplace_back();
+      out.emplace_back();
+      todo.push_back({n->child[1], first + 1});
+      todo.push_back({n->child[0], first});
+    }
+  }
+  rtcReleaseBVH(bvh);
+  if (!ok || leaf_order.size() != refs.size()) return false;
+  std::vector<std::uint8_t> seen(refs.size(), 0);
+  for (const std::uint32_t r : leaf_order) {
+    if (r >= refs.size() || seen[r]) return false;
+    seen[r] = 1;
+  }
+  // Exact boxes, children before parents (children always follow their parent in preorder).
+  for (std::size_t i = out.size(); i-- > 0;) {
+    BvhNode<T>& n = out[i];
+    n.box = BBox<T>{};
+    if (n.is_leaf()) {
+      for (std::uint32_t k = n.first; k < n.first + n.count; ++k) n.box.extend(refs[leaf_order[k]].box);
+    } else {
+      n.box.extend(out[n.first].box);
+      n.box.extend(out[n.first + 1].box);
+    }
+  }
+  nodes = std::move(out);
+  order = std::move(leaf_order);
+  return true;
+}
+
 }  // namespace
 
 template <typename T>
@@ -226,16 +359,24 @@ Bvh<T> build_bvh(const Scene& scene, const BvhBuildOptions& opts) {
   bvh.scene_max_abs = scene.bounds().max_abs_coord();
   const std::size_t n = b.refs.size();
   if (n == 0) return bvh;
+  auto add_triangle = [&](const Ref<T>& r) {
+    const Geometry& geo = scene.geometry(r.geom);
+    const Tri& t = geo.triangles[r.prim];
+    bvh.tris.push_back({Vec3<T>(geo.vertices[t[0]]), Vec3<T>(geo.vertices[t[1]]), Vec3<T>(geo.vertices[t[2]]), r.geom, r.prim});
+  };
+  std::vector<std::uint32_t> order;
+  if (opts.embree_builder && double(box.max_abs_coord()) < kEmbreeBuildMaxCoord &&
+      build_with_embree(b.refs, opts, bvh.nodes, order)) {
+    bvh.tris.reserve(n);
+    for (const std::uint32_t r : order) add_triangle(b.refs[r]);
+    return bvh;
+  }
   b.slots = std::make_unique_for_overwrite<std::byte[]>((2 * n - 1) * sizeof(BvhNode<T>));
   b.build(0, 0, std::uint32_t(n), 1, box, cbox);
   bvh.nodes = b.compacted();
   b.slots.reset();
   bvh.tris.reserve(n);
-  for (const Ref<T>& r : b.refs) {
-    const Geometry& geo = scene.geometry(r.geom);
-    const Tri& t = geo.triangles[r.prim];
-    bvh.tris.push_back({Vec3<T>(geo.vertices[t[0]]), Vec3<T>(geo.vertices[t[1]]), Vec3<T>(geo.vertices[t[2]]), r.geom, r.prim});
-  }
+  for (const Ref<T>& r : b.refs) add_triangle(r);
   return bvh;
 }
 

@@ -122,7 +122,9 @@ struct Collapser {
             key[s] += (oct >> a & 1) ? -c : c;
           }
         }
-        std::stable_sort(slot.begin(), slot.end(), [&](int x, int y) { return key[x] < key[y]; });
+        // Insertion sort (stable, no allocation): eight entries.
+        for (int i = 1; i < kWideArity; ++i)
+          for (int j = i; j > 0 && key[slot[j]] < key[slot[j - 1]]; --j) std::swap(slot[j], slot[j - 1]);
         std::uint32_t packed = valid << 24;
         for (int k = 0; k < kWideArity; ++k) packed |= std::uint32_t(slot[k]) << (3 * k);
         w.order[oct] = packed;
