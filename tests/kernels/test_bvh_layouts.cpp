@@ -4,6 +4,7 @@
 #include <numeric>
 #include <random>
 
+#include "pierce/bvh_builder.h"
 #include "test_util.h"
 
 namespace pierce::test {
@@ -202,6 +203,41 @@ TEST(BvhLayouts, BufferedReleaseAfterOverflow) {
   nodes[0] = join(nodes[1], nodes[2], 1);
   bvh.nodes = nodes;
   check_all(bvh, Expected(scene, {ray}));
+}
+
+}  // namespace
+}  // namespace pierce::test
+
+namespace pierce::test {
+namespace {
+
+// Both binary builders (Embree's rtcBuildBVH and Pierce's own SAH, which takes over beyond Embree's
+// coordinate range) give trees every kernel is exact on, with boxes that are exact unions.
+TEST(BvhLayouts, EmbreeAndOwnBuilders) {
+  auto meshes = gen::stacked_plates(12);
+  meshes.push_back(gen::duplicated(gen::box({0.2, 0.2, 0.5}, {0.8, 0.8, 1.5}, "dup"), 4, true));
+  meshes.push_back(gen::random_soup(600, 0.3, 9));
+  const Scene scene = gen::to_scene(meshes);
+  const Expected ex(scene, random_rays(scene.bounds(), 60, 8));
+  for (const bool embree : {true, false}) {
+    SCOPED_TRACE(embree ? "Embree's builder" : "own builder");
+    BvhBuildOptions opts;
+    opts.embree_builder = embree;
+    const Bvhf bvh = build_bvh<float>(scene, opts);
+    ASSERT_FALSE(bvh.nodes.empty());
+    for (const BvhNode<float>& n : bvh.nodes) {  // every box is exactly the union of what is below it
+      BBoxf want;
+      if (n.is_leaf()) {
+        for (std::uint32_t i = n.first; i < n.first + n.count; ++i)
+          want.extend(bvh.tris[i].v0), want.extend(bvh.tris[i].v1), want.extend(bvh.tris[i].v2);
+      } else {
+        want.extend(bvh.nodes[n.first].box), want.extend(bvh.nodes[n.first + 1].box);
+      }
+      ASSERT_EQ(n.box.lo, want.lo);
+      ASSERT_EQ(n.box.hi, want.hi);
+    }
+    check_all(bvh, ex);
+  }
 }
 
 }  // namespace
