@@ -334,21 +334,6 @@ inline bool traverse(SimdLevel level, const WideBvh<T>& bvh, const TraversalRay<
   return traverse_with<simd::ScalarOps<T>>(bvh, r, pending, p, c);
 }
 
-// The hit record for a triangle of a leaf block; geometric normal from the stored corners.
-template <typename T>
-inline Hit make_hit(const TriBlock<T>& b, int lane, const TriangleHit<T>& th) {
-  Hit h;
-  h.t = double(th.t);
-  h.geom = b.geom[lane];
-  h.prim = b.prim[lane];
-  h.u = float(th.u);
-  h.v = float(th.v);
-  const Vec3<T> v0 = b.corner(0, lane);
-  h.ng = Vec3f(cross(b.corner(1, lane) - v0, b.corner(2, lane) - v0));
-  h.enter = th.enter;
-  return h;
-}
-
 // Everything HitOrder looks at, without the rest of the record.
 template <typename T>
 inline Hit order_key(const TriBlock<T>& b, int lane, const TriangleHit<T>& th) {
@@ -357,6 +342,17 @@ inline Hit order_key(const TriBlock<T>& b, int lane, const TriangleHit<T>& th) {
   h.geom = b.geom[lane];
   h.prim = b.prim[lane];
   h.enter = th.enter;
+  return h;
+}
+
+// The hit record for a triangle of a leaf block; geometric normal from the stored corners.
+template <typename T>
+inline Hit make_hit(const TriBlock<T>& b, int lane, const TriangleHit<T>& th) {
+  Hit h = order_key(b, lane, th);
+  h.u = float(th.u);
+  h.v = float(th.v);
+  const Vec3<T> v0 = b.corner(0, lane);
+  h.ng = Vec3f(cross(b.corner(1, lane) - v0, b.corner(2, lane) - v0));
   return h;
 }
 
