@@ -107,6 +107,7 @@ struct Row {
   bool exact = true;
   bool reference = false;
   std::optional<KernelKind> kind;  // empty for the plain Embree reference rows
+  bool counted = false;            // the kernel's counting variant ran: its cells hold counters
   std::vector<Cell> cells;
   std::vector<CellJob> jobs;  // one per cell
 };
@@ -114,6 +115,7 @@ struct Row {
 struct Settings {
   std::vector<std::size_t> columns{1, 5, 15, 0};
   int reps = 3;
+  bool count = false;  // time the kernels' counting variants and print their counters
 };
 
 // Every cell of every row: a warm-up on the first eighth of the rays, then `reps` timed passes
@@ -158,7 +160,7 @@ constexpr std::size_t kGrain = 256;
 template <typename Query>
 Row run_reference(const std::string& name, const std::vector<std::size_t>& columns, const std::vector<Ray>& rays,
                   Query query) {
-  Row row{name, false, true, std::nullopt, {}, {}};
+  Row row{name, false, true, std::nullopt, false, {}, {}};
   auto buffers = std::make_shared<tbb::enumerable_thread_specific<std::vector<Hit>>>();
   for (const std::size_t n : columns) {
     auto pass = [buffers, query, &rays, n](Cell& cell, std::size_t begin, std::size_t end) {
@@ -204,7 +206,7 @@ std::vector<Row> run_references(const EmbreeReference& plain, const EmbreeRefere
 }
 
 Row run_kernel(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays, const Settings& st) {
-  Row row{std::string(kernel_name(kind)), is_exact(kind), false, kind, {}, {}};
+  Row row{std::string(kernel_name(kind)), is_exact(kind), false, kind, false, {}, {}};
   struct Worker {
     HitIterator it;
     std::vector<Hit> hits;
@@ -212,7 +214,10 @@ Row run_kernel(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays
   using Workers = tbb::enumerable_thread_specific<Worker>;
   for (const std::size_t n : st.columns) {
     // Fresh iterators per cell so the counters of one cell never mix with another's.
-    auto workers = std::make_shared<Workers>([&accel, kind] { return Worker{HitIterator(accel, kind), {}}; });
+    KernelOptions opts;
+    opts.count = row.counted = st.count;
+    auto workers =
+        std::make_shared<Workers>([&accel, kind, opts] { return Worker{HitIterator(accel, kind, opts), {}}; });
     auto pass = [workers, &rays, n](Cell& cell, std::size_t begin, std::size_t end) {
       tbb::enumerable_thread_specific<Tally> local;
       tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, kGrain), [&](const auto& range) {
@@ -404,7 +409,7 @@ void print_scene(const SceneResult& r, const Settings& st) {
         }
       std::cout << ".\n";
     }
-  if constexpr (kCountersEnabled) {
+  if (st.count) {
     std::cout << "\ncounters per ray (timed repetitions): node tests / traversal steps / primitive tests\n"
               << "(embree-* and epsilon: Embree's node visits are not visible, their steps are rtcIntersect1 calls)\n"
               << std::string(kNameWidth, ' ');
@@ -515,7 +520,7 @@ json scene_json(const SceneResult& r) {
                  {"deterministic", c.deterministic}};
       if (c.wrong_rays) jc["wrong_rays"] = *c.wrong_rays;
       if (c.odd_rays) jc["odd_hit_count_rays"] = *c.odd_rays;
-      if (kCountersEnabled && !row.reference) {
+      if (row.counted) {
         const double per = 1.0 / (double(rays) * double(c.seconds.size()));
         jc["counters_per_ray"] = {{"node_tests", double(c.counters.node_tests) * per},
                                   {"traversal_steps", double(c.counters.traversal_steps) * per},
@@ -583,6 +588,8 @@ int run(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   app.add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::Range(1, 1024));
   app.add_flag("--quick", quick, "tiny scenes and rays, one repetition (smoke run)");
+  app.add_flag("--counters", st.count,
+               "time the kernels' counting variants and print node tests, traversal steps and primitive tests per ray");
   app.add_option("--json", json_path, "also write every number to this JSON file");
   app.add_flag("--force", force, "overwrite the --json file if it exists");
   auto* reps_opt = app.add_option("--reps", st.reps, "timed repetitions per cell, median reported (default 3)")
@@ -656,7 +663,7 @@ int run(int argc, char** argv) {
             << "machine: " << cpu_model() << ", " << hw << " hardware threads, " << threads_used << " used\n"
             << "load average at start: " << load_before << "\n"
             << "Embree " << RTC_VERSION_STRING << ", oneTBB " << TBB_VERSION_STRING << ", counters "
-            << (kCountersEnabled ? "on" : "off") << (quick ? ", --quick" : "") << "\n"
+            << (st.count ? "on (the kernels' counting variants are timed)" : "off") << (quick ? ", --quick" : "") << "\n"
             << "rays per scene " << ray_count << ", seed " << seed << ", " << st.reps
             << " timed repetitions per cell (median) after a warm-up on 1/8 of the rays\n";
 
@@ -679,7 +686,7 @@ int run(int argc, char** argv) {
                   {"load_average_start", load_before}};
   j["versions"] = {{"embree", RTC_VERSION_STRING}, {"tbb", TBB_VERSION_STRING}};
   j["config"] = {{"rays", ray_count}, {"seed", seed},         {"reps", st.reps},
-                 {"quick", quick},    {"counters", kCountersEnabled}, {"warmup_fraction", 0.125}};
+                 {"quick", quick},    {"counters", st.count}, {"warmup_fraction", 0.125}};
   j["scenes"] = json::array();
   for (const auto& s : scenes) {
     const SceneResult r = run_scene(*s, kernels, st);

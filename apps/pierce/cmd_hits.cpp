@@ -16,6 +16,7 @@
 #include "interrupt.h"
 #include "model_args.h"
 #include "output_file.h"
+#include "picture.h"
 #include "pierce/error.h"
 #include "pierce/io/ray_source.h"
 #include "pierce/kernel.h"
@@ -34,6 +35,8 @@ struct HitsOptions {
   std::string json;  // --kernel all: the table as JSON (bench/plot_cost.py draws it)
   bool force = false;
   bool progress = false;
+  // --heatmap: one ray per pixel, coloured by its traversal work (Gribble 2016), instead of --rays.
+  std::string heatmap, heatmap_count = "steps", png_size = "800x600", png_view = "-1,-1,-1";
 };
 
 // Exit code when an exact kernel disagrees with the consensus.
@@ -245,11 +248,55 @@ int run_all(const Accel& accel, const std::vector<Ray>& rays, const HitsOptions&
   return disagreeing.empty() ? 0 : kExitExactDisagreement;
 }
 
+std::string cost_metric_list() {
+  std::string s;
+  for (CostMetric m : {CostMetric::traversal_steps, CostMetric::node_tests, CostMetric::prim_tests})
+    s += (s.empty() ? "" : ", ") + std::string(cost_metric_name(m));
+  return s;
+}
+
+// --heatmap: the kernel's counting variant on one ray per pixel.
+int run_heatmap(const Accel& accel, KernelKind kind, CostMetric metric, const FalseColourOptions& fo,
+                const HitsOptions& o) {
+  HeatmapStats stats;
+  const auto img = write_picture(o.heatmap, o.force, o.progress, fo.height, [&](const analysis::Progress& p) {
+    return render_cost_heatmap(accel, kind, o.max_hits, metric, fo, stats, p);
+  });
+  if (!img) return cancelled();
+  const std::string hits = o.max_hits == 0 ? "all hits" : "up to " + std::to_string(o.max_hits) + " hits";
+  std::printf("heat map %s: %dx%d, kernel %s, %s per ray; %s per ray: mean %.2f (%.2f over the %zu rays "
+              "that do work), max %.0f; colour range %g .. %g (white: no work)\n",
+              o.heatmap.c_str(), img->width, img->height, std::string(kernel_name(kind)).c_str(), hits.c_str(),
+              std::string(cost_metric_name(metric)).c_str(), stats.mean, stats.mean_over_scene, img->pixels_hit,
+              stats.max, img->range_min, img->range_max);
+  if (uses_embree(kind))
+    std::printf("note: %s runs in Embree, whose node visits are not visible: its steps are rtcIntersect1 calls, its "
+                "primitive tests Pierce's exact tests in Embree's callbacks\n",
+                std::string(kernel_name(kind)).c_str());
+  return 0;
+}
+
 int run_hits(const HitsOptions& o) {
   InterruptGuard guard;
   const bool all = o.kernel == "all";
   const std::optional<KernelKind> kind = parse_kernel(o.kernel);
   if (!all && !kind) throw InputError("unknown kernel '" + o.kernel + "' (expected one of: " + kernel_list() + ")");
+  const bool heatmap = !o.heatmap.empty();
+  if (heatmap == !o.rays.empty())
+    throw InputError(heatmap ? "--heatmap shoots its own rays (one per pixel): drop --rays"
+                             : "--rays is required (or --heatmap FILE.png for a traversal heat map)");
+  std::optional<CostMetric> metric;
+  FalseColourOptions fo;
+  if (heatmap) {
+    if (all) throw InputError("--heatmap shows one kernel's work: choose it with --kernel (not all)");
+    if (!o.out.empty() || !o.json.empty()) throw InputError("--heatmap writes a picture; drop --out and --json");
+    metric = parse_cost_metric(o.heatmap_count);
+    if (!metric)
+      throw InputError("--heatmap-count '" + o.heatmap_count + "': expected one of " + cost_metric_list());
+    parse_picture_size("--png-size", o.png_size, fo.width, fo.height);
+    fo.view_dir = parse_view_direction("--png-view", o.png_view);
+    OutputFile::check_target(o.heatmap, o.force);
+  }
   OutputFile::check_target(o.out, o.force);  // before any long work
   if (!o.json.empty()) {
     if (!all) throw InputError("--json is the table of --kernel all; use --out for one kernel's hits");
@@ -259,10 +306,14 @@ int run_hits(const HitsOptions& o) {
   Scene scene;
   load_models(scene, o.model);
   if (interrupted()) return cancelled();
-  const std::vector<Ray> rays = load_rays(o.rays, scene);
+  const std::vector<Ray> rays = heatmap ? std::vector<Ray>{} : load_rays(o.rays, scene);
   if (interrupted()) return cancelled();
   const auto t0 = std::chrono::steady_clock::now();
   const Accel accel(scene);
+  if (heatmap) {
+    if (std::string why = unsupported_reason(accel, *kind); !why.empty()) throw InputError(why);
+    return run_heatmap(accel, *kind, *metric, fo, o);
+  }
   if (all)
     std::printf("%zu geometries, %zu triangles (%zu degenerate); Pierce's BVH built in %.3f s (Embree's scenes on first use)\n",
                 scene.geometries().size(), scene.triangle_count(), scene.degenerate_count(), seconds_since(t0));
@@ -278,15 +329,23 @@ std::function<int()> register_hits(CLI::App& app) {
   // Geometry ids follow argument order: one per OBJ o/g group, one per CAD solid.
   add_model_args(cmd, opts->model, true);
   cmd->add_option("--rays", opts->rays,
-                  "CSV file ox,oy,oz,dx,dy,dz[,tmin,tmax], or grid:axis=x|y|z,n=N[,dir=-], or random:n=N[,seed=S]")
-      ->required();
+                  "CSV file ox,oy,oz,dx,dy,dz[,tmin,tmax], or grid:axis=x|y|z,n=N[,dir=-], or random:n=N[,seed=S] "
+                  "(required unless --heatmap)");
   cmd->add_option("--kernel", opts->kernel, "Kernel: " + kernel_list())->required();
   cmd->add_option("--max-hits", opts->max_hits, "At most N hits per ray (0 = all)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--out", opts->out, "Write the CSV here instead of stdout (with --kernel all: the consensus hits)");
   cmd->add_option("--json", opts->json,
                   "With --kernel all: also write the table (time and differences per kernel) as JSON here");
-  cmd->add_flag("--force", opts->force, "Overwrite an existing --out (or --json) file");
+  cmd->add_flag("--force", opts->force, "Overwrite an existing --out, --json or --heatmap file");
   cmd->add_flag("--progress", opts->progress, "Show a progress bar on stderr even when it is not a terminal");
+  cmd->add_option("--heatmap", opts->heatmap,
+                  "Instead of --rays: a PNG heat map of the kernel's traversal work, one ray per pixel "
+                  "(Gribble 2016), for --max-hits hits per ray");
+  cmd->add_option("--heatmap-count", opts->heatmap_count, "What the heat map counts: " + cost_metric_list())
+      ->capture_default_str();
+  cmd->add_option("--png-size", opts->png_size, "Heat map size WIDTHxHEIGHT in pixels")->capture_default_str();
+  cmd->add_option("--png-view", opts->png_view, "Direction the heat map's camera looks along, x,y,z (z is up)")
+      ->capture_default_str();
   return [opts] { return run_hits(*opts); };
 }
 

@@ -24,7 +24,7 @@ void embree_exact_intersect(const RTCIntersectFunctionNArguments* args) {
   auto* q = reinterpret_cast<EmbreeQuery*>(args->context);
   auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);  // rtcIntersect1: N == 1
   const Triangle<float>& tri = (*q->tris)[args->primID];
-  PIERCE_COUNT(*q->counters, prim_tests, 1);
+  if (q->counters) ++q->counters->prim_tests;
   using Mode = EmbreeQuery::Mode;
   const bool full = q->mode == Mode::closest_n && q->hits->size() == q->n;
   float hi = q->hi;
@@ -32,7 +32,7 @@ void embree_exact_intersect(const RTCIntersectFunctionNArguments* args) {
   if (full) hi = float(q->hits->front().t);
   TriangleHit<float> th;
   if (!intersect(q->ray, tri.v0, tri.v1, tri.v2, q->lo, hi, th)) return;
-  PIERCE_COUNT(*q->counters, valid_hits, 1);
+  if (q->counters) ++q->counters->valid_hits;
   const Hit key = order_key(tri, th);
   if (q->have_last && !q->order.less(q->last, key)) return;
   auto before = [q](const Hit& a, const Hit& b) { return q->order.less(a, b); };
@@ -62,7 +62,8 @@ void embree_exact_intersect(const RTCIntersectFunctionNArguments* args) {
 
 }  // namespace detail
 
-EmbreeExactBase::EmbreeExactBase(const EmbreeAccel& acc, HitOrder order, EmbreeQuery::Mode mode) : acc_(&acc) {
+EmbreeExactBase::EmbreeExactBase(const EmbreeAccel& acc, HitOrder order, EmbreeQuery::Mode mode, bool count)
+    : acc_(&acc), count_(count) {
   q_.mode = mode;
   q_.order = order;
   q_.tris = &acc.tris();
@@ -119,10 +120,10 @@ void EmbreeExactBase::trace(double lo, double hi) {
   q_.lo = float(lo);
   q_.hi = float(hi);
   // Pointers into this object are set per query, not once: kernels are values and may have moved.
-  q_.counters = &counters;
+  q_.counters = count_ ? &counters : nullptr;
   rtcInitIntersectContext(&q_.ctx);
   rtcIntersect1(acc_->exact(), &q_.ctx, &rh);
-  PIERCE_COUNT(counters, traversal_steps, 1);
+  if (count_) ++counters.traversal_steps;
 }
 
 void EmbreeRestartKernel::begin(const Ray& ray, std::size_t) { setup(ray); }
@@ -186,8 +187,8 @@ bool EmbreeNodeCullKernel::next(Hit& out) {
   return true;
 }
 
-EpsilonKernel::EpsilonKernel(const EmbreeAccel& acc, double epsilon_rel)
-    : acc_(&acc), eps_(epsilon_rel * acc.scene().scale()) {}
+EpsilonKernel::EpsilonKernel(const EmbreeAccel& acc, double epsilon_rel, bool count)
+    : acc_(&acc), eps_(epsilon_rel * acc.scene().scale()), count_(count) {}
 
 void EpsilonKernel::begin(const Ray& ray, std::size_t) {
   ray_ = ray;
@@ -214,7 +215,7 @@ bool EpsilonKernel::next(Hit& out) {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     rtcIntersect1(acc_->native(), &ctx, &rh);
-    PIERCE_COUNT(counters, traversal_steps, 1);
+    if (count_) ++counters.traversal_steps;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
       done_ = true;
       return false;

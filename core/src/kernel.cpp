@@ -30,29 +30,37 @@ constexpr std::pair<KernelKind, std::string_view> kNames[] = {
     {KernelKind::buffered_d, "buffered-d"},
 };
 
-using Impl = std::variant<EpsilonKernel, EmbreeRestartKernel, EmbreeFilterKernel, EmbreeNodeCullKernel,
-                          RestartKernel<float>, QueueKernel<float>, NodeCullKernel<float>, AllHitsKernel<float>,
-                          BufferedKernel<float>, RestartKernel<double>, QueueKernel<double>, NodeCullKernel<double>,
-                          AllHitsKernel<double>, BufferedKernel<double>>;
+using Impl = HitIterator::Impl;
+
+template <class C>
+HitIterator::OwnBvhKernels<C> make_own(const Accel& a, KernelKind kind, const HitOrder& o) {
+  switch (kind) {
+    case KernelKind::queue: return QueueKernel<float, C>(a.wide(), o);
+    case KernelKind::nodecull: return NodeCullKernel<float, C>(a.wide(), o);
+    case KernelKind::filter: return AllHitsKernel<float, C>(a.wide(), o);
+    case KernelKind::buffered: return BufferedKernel<float, C>(a.wide(), o);
+    case KernelKind::restart_d: return RestartKernel<double, C>(a.wide_double(), o);
+    case KernelKind::queue_d: return QueueKernel<double, C>(a.wide_double(), o);
+    case KernelKind::nodecull_d: return NodeCullKernel<double, C>(a.wide_double(), o);
+    case KernelKind::filter_d: return AllHitsKernel<double, C>(a.wide_double(), o);
+    case KernelKind::buffered_d: return BufferedKernel<double, C>(a.wide_double(), o);
+    case KernelKind::restart:
+    default: return RestartKernel<float, C>(a.wide(), o);  // the Embree kinds never get here
+  }
+}
 
 Impl make_impl(const Accel& a, KernelKind kind, const KernelOptions& o) {
   switch (kind) {
-    case KernelKind::epsilon: return EpsilonKernel(a.embree(), o.epsilon_rel);
-    case KernelKind::embree_restart: return EmbreeRestartKernel(a.embree(), o.order);
-    case KernelKind::embree_filter: return EmbreeFilterKernel(a.embree(), o.order);
-    case KernelKind::embree_nodecull: return EmbreeNodeCullKernel(a.embree(), o.order);
-    case KernelKind::restart: return RestartKernel<float>(a.wide(), o.order);
-    case KernelKind::queue: return QueueKernel<float>(a.wide(), o.order);
-    case KernelKind::nodecull: return NodeCullKernel<float>(a.wide(), o.order);
-    case KernelKind::filter: return AllHitsKernel<float>(a.wide(), o.order);
-    case KernelKind::buffered: return BufferedKernel<float>(a.wide(), o.order);
-    case KernelKind::restart_d: return RestartKernel<double>(a.wide_double(), o.order);
-    case KernelKind::queue_d: return QueueKernel<double>(a.wide_double(), o.order);
-    case KernelKind::nodecull_d: return NodeCullKernel<double>(a.wide_double(), o.order);
-    case KernelKind::filter_d: return AllHitsKernel<double>(a.wide_double(), o.order);
-    case KernelKind::buffered_d: return BufferedKernel<double>(a.wide_double(), o.order);
+    case KernelKind::epsilon: return EpsilonKernel(a.embree(), o.epsilon_rel, o.count);
+    case KernelKind::embree_restart: return EmbreeRestartKernel(a.embree(), o.order, o.count);
+    case KernelKind::embree_filter: return EmbreeFilterKernel(a.embree(), o.order, o.count);
+    case KernelKind::embree_nodecull: return EmbreeNodeCullKernel(a.embree(), o.order, o.count);
+    default: {
+      auto to_impl = [](auto&& k) -> Impl { return std::move(k); };
+      if (o.count) return std::visit(to_impl, make_own<Counters>(a, kind, o.order));
+      return std::visit(to_impl, make_own<NoCounters>(a, kind, o.order));
+    }
   }
-  return RestartKernel<float>(a.wide(), o.order);
 }
 }  // namespace
 
@@ -148,7 +156,7 @@ bool HitIterator::next(Hit& out) {
 }
 
 Counters HitIterator::counters() const {
-  return std::visit([](const auto& k) { return k.counters; }, impl_);
+  return std::visit([](const auto& k) { return k.counters.totals(); }, impl_);
 }
 
 void collect_hits(HitIterator& it, const Ray& ray, std::size_t max_hits, std::vector<Hit>& out) {

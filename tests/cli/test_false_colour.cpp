@@ -2,7 +2,9 @@
 // slabs of different thickness rendered to PNG, decoded back and checked pixel by pixel.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "png_decode.h"
 #include "pierce/analysis/thickness.h"
@@ -170,6 +172,72 @@ TEST(FalseColour, BadOptionsAreRejected) {
   EXPECT_THROW(parse_view_direction("--png-view", "1,2"), InputError);
   EXPECT_THROW(parse_view_direction("--png-view", "0,0,0"), InputError);
   EXPECT_EQ(parse_view_direction("--png-view", "1,-2,3.5"), (Vec3d{1, -2, 3.5}));
+}
+
+// The heat map of traversal work: each pixel's count is what the kernel's counting variant counts
+// for that pixel's ray, which the picture shows on the colour map from 0 to the maximum.
+TEST(CostHeatmap, PixelsShowTheCountingKernelsWorkPerRay) {
+  const Scene scene = gen::to_scene(gen::stacked_plates(6));
+  const Accel accel(scene);
+  FalseColourOptions opts;
+  opts.width = 96;
+  opts.height = 64;
+  opts.view_dir = {0.3, 0.2, -1};
+  opts.legend = false;
+  for (const auto& [kind, max_hits, metric] :
+       {std::tuple{KernelKind::queue, std::size_t(0), CostMetric::prim_tests},
+        std::tuple{KernelKind::restart, std::size_t(1), CostMetric::traversal_steps},
+        std::tuple{KernelKind::filter, std::size_t(0), CostMetric::node_tests}}) {
+    SCOPED_TRACE(std::string(kernel_name(kind)) + " " + std::string(cost_metric_name(metric)));
+    HeatmapStats stats;
+    const FalseColourImage img = render_cost_heatmap(accel, kind, max_hits, metric, opts, stats);
+    ASSERT_TRUE(img.completed);
+    const auto png = decode_png(false_colour_png(img));
+
+    const PictureFrame fr = PictureFrame::fit(scene, opts);
+    KernelOptions counting;
+    counting.count = true;
+    HitIterator it(accel, kind, counting);
+    std::vector<Hit> hits;
+    std::vector<double> cost;
+    for (int y = 0; y < fr.height; ++y)
+      for (int x = 0; x < fr.view_width; ++x) {
+        const Counters before = it.counters();
+        hits.clear();
+        collect_hits(it, fr.ray(x, y), max_hits, hits);
+        const Counters c = it.counters() - before;
+        cost.push_back(double(metric == CostMetric::prim_tests   ? c.prim_tests
+                              : metric == CostMetric::node_tests ? c.node_tests
+                                                                 : c.traversal_steps));
+      }
+    const double max = *std::max_element(cost.begin(), cost.end());
+    double sum = 0;
+    std::size_t working = 0;
+    for (double c : cost) sum += c, working += c > 0;
+    ASSERT_GT(max, 1.0);
+    EXPECT_EQ(stats.max, max);
+    EXPECT_DOUBLE_EQ(stats.mean, sum / double(cost.size()));
+    EXPECT_EQ(img.pixels_hit, working);
+    EXPECT_EQ(img.range_max, max);
+    // The frame has a margin where rays miss the scene's box: no steps, no primitive tests; only
+    // the root's box test, which every ray does.
+    if (metric == CostMetric::node_tests) EXPECT_EQ(working, cost.size());
+    else EXPECT_LT(working, cost.size());
+    for (int y = 0; y < fr.height; ++y)
+      for (int x = 0; x < fr.view_width; ++x) {
+        const double c = cost[std::size_t(y * fr.view_width + x)];
+        const Rgb got = pixel(png, std::uint32_t(x), std::uint32_t(y));
+        if (c == 0) ASSERT_TRUE(white(got)) << x << "," << y;
+        else expect_colour(got, colour_of(opts.map, c / max), "heat");
+      }
+  }
+  // Work grows with the hits asked for.
+  HeatmapStats one, all;
+  render_cost_heatmap(accel, KernelKind::queue, 1, CostMetric::prim_tests, opts, one);
+  render_cost_heatmap(accel, KernelKind::queue, 0, CostMetric::prim_tests, opts, all);
+  EXPECT_LT(one.mean, all.mean);
+  EXPECT_EQ(parse_cost_metric("steps"), CostMetric::traversal_steps);
+  EXPECT_EQ(parse_cost_metric("nodes"), std::nullopt);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
-// Traversal counters (built with -DPIERCE_COUNTERS=ON): non-zero where the kernel does that work,
-// and consistent: every returned hit was a valid hit, every valid hit came from a primitive test.
+// Traversal counters (the counting variant, KernelOptions::count): non-zero where the kernel does
+// that work, and consistent: every returned hit was a valid hit, every valid hit came from a
+// primitive test. The plain variant counts nothing and returns the same hits.
 #include "test_util.h"
 
 namespace pierce::test {
@@ -11,19 +12,26 @@ bool on_pierce_bvh(KernelKind k) {
 }
 
 TEST(Counters, NonZeroAndConsistent) {
-  if (!kCountersEnabled) GTEST_SKIP() << "built without PIERCE_COUNTERS";
   auto meshes = gen::stacked_plates(6);
   meshes.push_back(gen::random_soup(300, 0.2, 3));
   const auto w = make_world(meshes);
   const auto rays = random_rays(w->scene.bounds(), 100, 4);
   for (KernelKind k : kAllKernels) {
     SCOPED_TRACE(kernel_name(k));
-    HitIterator it(w->accel, k);  // constructed, then moved into place: counting must survive that
+    KernelOptions counting;
+    counting.count = true;
+    HitIterator it(w->accel, k, counting);  // constructed, then moved into place: counting must survive that
     std::vector<HitIterator> moved;
     moved.push_back(std::move(it));
     HitIterator& m = moved.back();
+    HitIterator plain(w->accel, k);
     std::size_t returned = 0;
-    for (const Ray& r : rays) returned += kernel_hits(m, r).size();
+    for (const Ray& r : rays) {
+      const auto hits = kernel_hits(m, r);
+      EXPECT_TRUE(same_hits(kernel_hits(plain, r), hits)) << "counting changed the answer";
+      returned += hits.size();
+    }
+    EXPECT_EQ(plain.counters().traversal_steps, 0u) << "the plain variant counts nothing";
     ASSERT_GT(returned, 0u);
     const Counters c = m.counters();
     EXPECT_GT(c.traversal_steps, 0u);

@@ -1,5 +1,7 @@
 #pragma once
-// Traversal counters (Gribble 2016): compiled in only with -DPIERCE_COUNTERS=ON.
+// Traversal counters (Gribble 2016) as a policy of the traversal: a kernel instantiated with
+// Counters counts its work; one instantiated with NoCounters (the default) compiles every count to
+// nothing, so the counting variant exists in every build at no cost to the others.
 #include <cstdint>
 
 namespace pierce {
@@ -15,14 +17,27 @@ struct Counters {
     prim_tests += o.prim_tests, valid_hits += o.valid_hits;
     return *this;
   }
+  Counters& operator-=(const Counters& o) {
+    node_tests -= o.node_tests, traversal_steps -= o.traversal_steps, leaf_visits -= o.leaf_visits;
+    prim_tests -= o.prim_tests, valid_hits -= o.valid_hits;
+    return *this;
+  }
+  friend Counters operator-(Counters a, const Counters& b) { return a -= b; }
+  Counters totals() const { return *this; }
 };
 
-#ifdef PIERCE_WITH_COUNTERS
-inline constexpr bool kCountersEnabled = true;
-#define PIERCE_COUNT(c, field, n) ((c).field += (n))
-#else
-inline constexpr bool kCountersEnabled = false;
-#define PIERCE_COUNT(c, field, n) ((void)0)
-#endif
+// A count that is never kept.
+struct IgnoredCount {
+  template <typename N>
+  constexpr IgnoredCount& operator+=(N) {
+    return *this;
+  }
+};
+
+// The counter policy of the kernels that do not count: the same fields, all ignored.
+struct NoCounters {
+  IgnoredCount node_tests, traversal_steps, prim_tests, valid_hits, leaf_visits;
+  Counters totals() const { return {}; }
+};
 
 }  // namespace pierce

@@ -65,6 +65,9 @@ inline constexpr double kEmbreeMaxCoord = 0x1p59;
 struct KernelOptions {
   HitOrder order;
   double epsilon_rel = 1e-5;  // epsilon kernel only: relative to the scene diagonal
+  // The counting variant of the kernel: HitIterator::counters() then reports its work (node tests,
+  // traversal steps, primitive tests, valid hits). Off, counting costs nothing.
+  bool count = false;
 };
 
 // A scene with the acceleration structures the kernels need. The float wide BVH is built with the
@@ -103,6 +106,17 @@ class Accel {
 // beyond kEmbreeMaxCoord). HitIterator throws InputError with this message.
 std::string unsupported_reason(const Accel& accel, KernelKind kind);
 
+namespace detail {
+template <class... V>
+struct VariantCat;
+template <class... A, class... B, class... C>
+struct VariantCat<std::variant<A...>, std::variant<B...>, std::variant<C...>> {
+  using type = std::variant<A..., B..., C...>;
+};
+template <class... V>
+using variant_cat_t = typename VariantCat<V...>::type;
+}  // namespace detail
+
 class HitIterator {
  public:
   HitIterator(const Accel& accel, KernelKind kind, const KernelOptions& opts = {});
@@ -111,15 +125,22 @@ class HitIterator {
   void begin(const Ray& ray, std::size_t max_hits = 0);
   bool next(Hit& out);
   KernelKind kind() const { return kind_; }
+  // The work done since construction; all zero unless constructed with KernelOptions::count.
   Counters counters() const;
+
+  // Every kernel; those on Pierce's BVH in their plain and their counting variant (the Embree
+  // ones decide at run time), in one flat variant so that a call dispatches once.
+  template <class C>
+  using OwnBvhKernels = std::variant<RestartKernel<float, C>, QueueKernel<float, C>, NodeCullKernel<float, C>,
+                                     AllHitsKernel<float, C>, BufferedKernel<float, C>, RestartKernel<double, C>,
+                                     QueueKernel<double, C>, NodeCullKernel<double, C>, AllHitsKernel<double, C>,
+                                     BufferedKernel<double, C>>;
+  using EmbreeKernels = std::variant<EpsilonKernel, EmbreeRestartKernel, EmbreeFilterKernel, EmbreeNodeCullKernel>;
+  using Impl = detail::variant_cat_t<EmbreeKernels, OwnBvhKernels<NoCounters>, OwnBvhKernels<Counters>>;
 
  private:
   KernelKind kind_;
-  std::variant<EpsilonKernel, EmbreeRestartKernel, EmbreeFilterKernel, EmbreeNodeCullKernel, RestartKernel<float>,
-               QueueKernel<float>, NodeCullKernel<float>, AllHitsKernel<float>, BufferedKernel<float>,
-               RestartKernel<double>, QueueKernel<double>, NodeCullKernel<double>, AllHitsKernel<double>,
-               BufferedKernel<double>>
-      impl_;
+  Impl impl_;
 };
 
 // All hits of one ray (up to max_hits, 0 = all) appended to `out`.

@@ -11,6 +11,7 @@
 //  - node(ref, tn): Gribble's every-node callback, called for each node traversed;
 //  - hit(block, lane, th): the leaf callback, called for every triangle the exact test accepts
 //    within the active range.
+// The counters are a policy too (counters.h): Counters counts the work, NoCounters compiles it out.
 // Policies derive from TraversalPolicy, which gives the defaults.
 //
 // The traversal is written once and compiled for each instruction-set level (simd_level.h):
@@ -122,33 +123,31 @@ struct TraversalPolicy {
 };
 
 // Pushes the root onto `pending` if the ray meets the scene's box within [lo, hi].
-template <typename T, class Pending>
-inline void seed(const WideBvh<T>& bvh, const TraversalRay<T>& r, T lo, T hi, Pending& pending, Counters& c) {
-  (void)c;
+template <typename T, class Pending, class C>
+inline void seed(const WideBvh<T>& bvh, const TraversalRay<T>& r, T lo, T hi, Pending& pending, C& c) {
   if (bvh.empty() || !r.valid()) return;
   const Span<T> s = slab(r, bvh.bounds.lo, bvh.bounds.hi);
-  PIERCE_COUNT(c, node_tests, 1);
+  c.node_tests += 1;
   if (box_overlaps(r, s, lo, hi)) pending.push({s.tn, bvh.root});
 }
 
 // Pieces of the loop shared by both container kinds.
-template <class Ops, typename T, class Policy>
+template <class Ops, typename T, class Policy, class C>
 inline void detail_leaf(const Ops& ops, const TriBlock<T>* blocks, NodeRef ref, const TraversalRay<T>& r, Policy& p,
-                        Counters& c) {
-  (void)c;
-  PIERCE_COUNT(c, leaf_visits, 1);
+                        C& c) {
+  c.leaf_visits += 1;
   const std::uint32_t first = leaf_first_block(ref), end = first + leaf_block_count(ref);
   for (std::uint32_t b = first; b < end; ++b) {
     const TriBlock<T>& blk = blocks[b];
     std::uint32_t cand = ops.tri_candidates(blk);
-    PIERCE_COUNT(c, prim_tests, std::uint64_t(__builtin_popcount(blk.valid)));
+    c.prim_tests += std::uint64_t(__builtin_popcount(blk.valid));
     while (cand != 0) {
       const int l = __builtin_ctz(cand);
       cand &= cand - 1;
       TriangleHit<T> th;
       if (!intersect(r, blk.corner(0, l), blk.corner(1, l), blk.corner(2, l), blk.sum[l], p.lo(), p.hi(), th))
         continue;
-      PIERCE_COUNT(c, valid_hits, 1);
+      c.valid_hits += 1;
       p.hit(blk, l, th);
     }
   }
@@ -228,10 +227,8 @@ HeapCursor<T> cursor(NodeHeap<T>& h) {
 
 // The traversal loop with the node and leaf tests of `Ops`. Returns true when every pending node
 // is done, false when the policy suspended it (the next node is back on `container`).
-template <class Ops, typename T, class Container, class Policy>
-inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Container& container, Policy& p,
-                          Counters& c) {
-  (void)c;
+template <class Ops, typename T, class Container, class Policy, class C>
+inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Container& container, Policy& p, C& c) {
   const Ops ops(r);
   const WideNode<T>* const nodes = bvh.nodes.data();
   const TriBlock<T>* const blocks = bvh.blocks.data();
@@ -259,7 +256,7 @@ inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Conta
       p.culled(cur.tn);
       continue;
     }
-    PIERCE_COUNT(c, traversal_steps, 1);
+    c.traversal_steps += 1;
     p.node(cur.ref, cur.tn);
 
     if (is_leaf(cur.ref)) {
@@ -270,7 +267,7 @@ inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Conta
     alignas(32) NodeRef child[kWideArity];
     // Bit k: the child ranked k-th near to far for this octant passed; tn and child in that order.
     std::uint32_t mask = ops.node_hits(nodes[cur.ref], p.lo(), p.hi(), tn, child);
-    PIERCE_COUNT(c, node_tests, std::uint64_t(__builtin_popcount(nodes[cur.ref].valid())));
+    c.node_tests += std::uint64_t(__builtin_popcount(nodes[cur.ref].valid()));
     if constexpr (Policy::kCullsInRange) mask = detail_cull(p, mask, tn);
     if (mask == 0) continue;
     detail_prefetch_leaves(blocks, mask, child);
@@ -307,26 +304,25 @@ inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Conta
 
 namespace detail {
 
-template <typename T, class Pending, class Policy>
+template <typename T, class Pending, class Policy, class C>
 __attribute__((target("avx2"), flatten)) bool traverse_avx2(const WideBvh<T>& bvh, const TraversalRay<T>& r,
-                                                            Pending& pending, Policy& p, Counters& c) {
+                                                            Pending& pending, Policy& p, C& c) {
   return traverse_with<simd::Avx2Ops>(bvh, r, pending, p, c);
 }
 
-template <typename T, class Pending, class Policy>
+template <typename T, class Pending, class Policy, class C>
 __attribute__((target(PIERCE_AVX512_TARGET), flatten)) bool traverse_avx512(const WideBvh<T>& bvh,
                                                                             const TraversalRay<T>& r,
-                                                                            Pending& pending, Policy& p,
-                                                                            Counters& c) {
+                                                                            Pending& pending, Policy& p, C& c) {
   return traverse_with<simd::Avx512Ops>(bvh, r, pending, p, c);
 }
 
 }  // namespace detail
 
 // Runs the traversal at `level` (the SIMD paths exist for float; double runs the scalar one).
-template <typename T, class Pending, class Policy>
+template <typename T, class Pending, class Policy, class C>
 inline bool traverse(SimdLevel level, const WideBvh<T>& bvh, const TraversalRay<T>& r, Pending& pending, Policy& p,
-                     Counters& c) {
+                     C& c) {
   if constexpr (std::is_same_v<T, float>) {
     if (level == SimdLevel::avx512) return detail::traverse_avx512(bvh, r, pending, p, c);
     if (level == SimdLevel::avx2) return detail::traverse_avx2(bvh, r, pending, p, c);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "pierce/error.h"
@@ -134,23 +135,124 @@ Vec3d colour_of(ColourMap map, double s) {
   return map == ColourMap::viridis ? lerp_map(kViridis, s) : lerp_map(kCoolWarm, s);
 }
 
-FalseColourImage render_false_colour(const Accel& accel, const ElementField& field, const FalseColourOptions& opts,
-                                     const analysis::Progress& progress) {
+PictureFrame PictureFrame::fit(const Scene& scene, const FalseColourOptions& opts) {
   constexpr int kMaxSide = 16384;
   if (opts.width < 16 || opts.height < 16 || opts.width > kMaxSide || opts.height > kMaxSide)
     throw std::invalid_argument("false colour: picture size must be 16..16384 pixels per side");
   const double view_len = length(opts.view_dir);
   if (!std::isfinite(view_len) || view_len == 0)
     throw std::invalid_argument("false colour: view direction must be finite and non-zero");
-  const Scene& scene = accel.scene();
-  check_field(scene, field);
+  PictureFrame fr;
+  fr.width = opts.width;
+  fr.height = opts.height;
+  // Colour bar strip on the right, wide enough for a label like "-1.23e-05".
+  fr.glyph_scale = std::max(1, opts.height / 200);
+  fr.label_width = 9 * 4 * fr.glyph_scale;
+  fr.legend_width = opts.legend ? std::max(opts.width / 6, fr.label_width + 8) : 0;
+  fr.legend = opts.legend && opts.width - fr.legend_width >= opts.width / 2;
+  fr.view_width = fr.legend ? opts.width - fr.legend_width : opts.width;
 
+  fr.f = opts.view_dir * (1.0 / view_len);
+  Vec3d up{0, 0, 1};
+  if (length(cross(fr.f, up)) < 1e-6) up = {0, 1, 0};
+  fr.right = cross(fr.f, up);
+  fr.right = fr.right * (1.0 / length(fr.right));
+  fr.cam_up = cross(fr.right, fr.f);
+  const BBoxd& box = scene.bounds();
+  const Vec3d centre = box.empty() ? Vec3d{} : box.center();
+  double half_r = 0, half_u = 0;
+  if (!box.empty())
+    for (int i = 0; i < 8; ++i) {
+      const Vec3d corner{i & 1 ? box.hi.x : box.lo.x, i & 2 ? box.hi.y : box.lo.y, i & 4 ? box.hi.z : box.lo.z};
+      half_r = std::max(half_r, std::abs(dot(corner - centre, fr.right)));
+      half_u = std::max(half_u, std::abs(dot(corner - centre, fr.cam_up)));
+    }
+  fr.pixel = 1.06 * std::max(2 * half_r / fr.view_width, 2 * half_u / opts.height);
+  if (!(fr.pixel > 0)) fr.pixel = scene.scale() / std::min(fr.view_width, opts.height);
+  fr.eye = centre - fr.f * (2 * scene.scale());
+  // A light above and left of the camera: in an isometric view of a box a headlight would shade
+  // all three visible faces alike.
+  fr.light = fr.cam_up * 0.5 - fr.right * 0.3 - fr.f;
+  fr.light = fr.light * (1.0 / length(fr.light));
+  return fr;
+}
+
+Ray PictureFrame::ray(int x, int y) const {
+  Ray r;
+  r.org = eye + right * ((x + 0.5 - 0.5 * view_width) * pixel) + cam_up * ((0.5 * height - y - 0.5) * pixel);
+  r.dir = f;
+  return r;
+}
+
+namespace {
+
+FalseColourImage blank_image(const PictureFrame& fr) {
   FalseColourImage img;
-  img.width = opts.width;
-  img.height = opts.height;
+  img.width = fr.width;
+  img.height = fr.height;
   img.rgb.resize(std::size_t(img.width) * std::size_t(img.height) * 3);
   for (std::size_t i = 0; i < img.rgb.size(); i += 3)
     img.rgb[i] = kBackground.x, img.rgb[i + 1] = kBackground.y, img.rgb[i + 2] = kBackground.z;
+  return img;
+}
+
+// Calls paint_row(y, canvas) for every row of the view in parallel, with progress per row; false
+// if cancelled.
+template <class PaintRow>
+bool paint_rows(const PictureFrame& fr, Canvas& canvas, const analysis::Progress& progress, PaintRow paint_row) {
+  std::atomic<std::size_t> rows_done{0};
+  std::atomic<bool> cancel{false};
+  tbb::parallel_for(tbb::blocked_range<int>(0, fr.height, 4), [&](const tbb::blocked_range<int>& rows) {
+    if (cancel.load(std::memory_order_relaxed)) return;
+    for (int y = rows.begin(); y != rows.end(); ++y) {
+      paint_row(y, canvas);
+      const std::size_t done = rows_done.fetch_add(1) + 1;
+      if (progress && !progress(done, std::size_t(fr.height))) cancel = true;
+      if (cancel.load(std::memory_order_relaxed)) break;
+    }
+  });
+  return !cancel;
+}
+
+void draw_legend(const PictureFrame& fr, Canvas& canvas, ColourMap map, double lo, double hi) {
+  if (!fr.legend) return;
+  const int g = fr.glyph_scale;
+  const int margin = 6 * g;
+  const int text_height = 5 * g;
+  const int x0 = fr.view_width + (fr.legend_width - fr.label_width) / 2;
+  const int bar_top = margin + text_height + margin, bar_bottom = fr.height - margin - text_height - margin;
+  const int bar_width = std::max(8, fr.legend_width / 5);
+  for (int y = bar_top; y < bar_bottom; ++y) {
+    const double s = bar_bottom - 1 > bar_top ? double(bar_bottom - 1 - y) / double(bar_bottom - 1 - bar_top) : 0.5;
+    for (int x = x0; x < x0 + bar_width; ++x) canvas.set(x, y, colour_of(map, s));
+  }
+  canvas.text(x0, margin, label(hi), g);
+  canvas.text(x0, bar_bottom + margin, label(lo), g);
+}
+
+constexpr std::pair<CostMetric, std::string_view> kCostMetricNames[] = {
+    {CostMetric::traversal_steps, "steps"},
+    {CostMetric::node_tests, "node-tests"},
+    {CostMetric::prim_tests, "prim-tests"},
+};
+
+std::uint64_t cost_of(const Counters& c, CostMetric m) {
+  switch (m) {
+    case CostMetric::node_tests: return c.node_tests;
+    case CostMetric::prim_tests: return c.prim_tests;
+    case CostMetric::traversal_steps: break;
+  }
+  return c.traversal_steps;
+}
+
+}  // namespace
+
+FalseColourImage render_false_colour(const Accel& accel, const ElementField& field, const FalseColourOptions& opts,
+                                     const analysis::Progress& progress) {
+  const Scene& scene = accel.scene();
+  const PictureFrame fr = PictureFrame::fit(scene, opts);
+  check_field(scene, field);
+  FalseColourImage img = blank_image(fr);
 
   // Value range of the colour map.
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
@@ -164,83 +266,92 @@ FalseColourImage render_false_colour(const Accel& accel, const ElementField& fie
   img.range_max = hi;
   auto scaled = [&](double v) { return hi > lo ? (v - lo) / (hi - lo) : 0.5; };
 
-  // Colour bar strip on the right, wide enough for a label like "-1.23e-05".
-  const int glyph_scale = std::max(1, opts.height / 200);
-  const int label_width = 9 * 4 * glyph_scale;
-  const int legend_width = opts.legend ? std::max(opts.width / 6, label_width + 8) : 0;
-  const bool legend = opts.legend && opts.width - legend_width >= opts.width / 2;
-  const int view_width = legend ? opts.width - legend_width : opts.width;
-
-  // Orthographic camera fitted to the scene's bounds seen along the view direction.
-  const Vec3d f = opts.view_dir * (1.0 / view_len);
-  Vec3d up{0, 0, 1};
-  if (length(cross(f, up)) < 1e-6) up = {0, 1, 0};
-  Vec3d right = cross(f, up);
-  right = right * (1.0 / length(right));
-  const Vec3d cam_up = cross(right, f);
-  const BBoxd& box = scene.bounds();
-  const Vec3d centre = box.empty() ? Vec3d{} : box.center();
-  double half_r = 0, half_u = 0;
-  if (!box.empty())
-    for (int i = 0; i < 8; ++i) {
-      const Vec3d corner{i & 1 ? box.hi.x : box.lo.x, i & 2 ? box.hi.y : box.lo.y, i & 4 ? box.hi.z : box.lo.z};
-      half_r = std::max(half_r, std::abs(dot(corner - centre, right)));
-      half_u = std::max(half_u, std::abs(dot(corner - centre, cam_up)));
-    }
-  double pixel = 1.06 * std::max(2 * half_r / view_width, 2 * half_u / opts.height);
-  if (!(pixel > 0)) pixel = scene.scale() / std::min(view_width, opts.height);
-  const Vec3d eye = centre - f * (2 * scene.scale());
-  // A light above and left of the camera: in an isometric view of a box a headlight would shade
-  // all three visible faces alike.
-  Vec3d light = cam_up * 0.5 - right * 0.3 - f;
-  light = light * (1.0 / length(light));
-
-  std::atomic<std::size_t> rows_done{0}, hit_count{0};
-  std::atomic<bool> cancel{false};
+  std::atomic<std::size_t> hit_count{0};
+  tbb::enumerable_thread_specific<HitIterator> iters([&] { return HitIterator(accel, opts.kernel); });
   Canvas canvas{img.width, img.height, img.rgb};
-  tbb::parallel_for(tbb::blocked_range<int>(0, opts.height, 4), [&](const tbb::blocked_range<int>& rows) {
-    if (cancel.load(std::memory_order_relaxed)) return;
-    HitIterator it(accel, opts.kernel);
+  img.completed = paint_rows(fr, canvas, progress, [&](int y, Canvas& c) {
+    HitIterator& it = iters.local();
     std::size_t hits = 0;
-    for (int y = rows.begin(); y != rows.end(); ++y) {
-      for (int x = 0; x < view_width; ++x) {
-        Ray ray;
-        ray.org = eye + right * ((x + 0.5 - 0.5 * view_width) * pixel) + cam_up * ((0.5 * opts.height - y - 0.5) * pixel);
-        ray.dir = f;
-        it.begin(ray, 1);
-        Hit h;
-        if (!it.next(h)) continue;
-        ++hits;
-        const auto [value, marked] = value_at(scene, field, h);
-        const Vec3d base = marked ? kMarked : std::isnan(value) ? kNoValue : colour_of(opts.map, scaled(value));
-        const Vec3d n{h.ng.x, h.ng.y, h.ng.z};
-        const double nl = length(n);
-        // Two-sided Lambert with some ambient, so faces turned from the light stay readable.
-        const double lambert = nl > 0 ? std::abs(dot(n, light)) / nl : 1.0;
-        canvas.set(x, y, base * (0.3 + 0.7 * lambert));
-      }
-      const std::size_t done = rows_done.fetch_add(1) + 1;
-      if (progress && !progress(done, std::size_t(opts.height))) cancel = true;
-      if (cancel.load(std::memory_order_relaxed)) break;
+    for (int x = 0; x < fr.view_width; ++x) {
+      it.begin(fr.ray(x, y), 1);
+      Hit h;
+      if (!it.next(h)) continue;
+      ++hits;
+      const auto [value, marked] = value_at(scene, field, h);
+      const Vec3d base = marked ? kMarked : std::isnan(value) ? kNoValue : colour_of(opts.map, scaled(value));
+      const Vec3d n{h.ng.x, h.ng.y, h.ng.z};
+      const double nl = length(n);
+      // Two-sided Lambert with some ambient, so faces turned from the light stay readable.
+      const double lambert = nl > 0 ? std::abs(dot(n, fr.light)) / nl : 1.0;
+      c.set(x, y, base * (0.3 + 0.7 * lambert));
     }
     hit_count += hits;
   });
   img.pixels_hit = hit_count;
-  img.completed = !cancel;
+  draw_legend(fr, canvas, opts.map, lo, hi);
+  return img;
+}
 
-  if (legend) {
-    const int margin = 6 * glyph_scale;
-    const int text_height = 5 * glyph_scale;
-    const int x0 = view_width + (legend_width - label_width) / 2;
-    const int bar_top = margin + text_height + margin, bar_bottom = opts.height - margin - text_height - margin;
-    const int bar_width = std::max(8, legend_width / 5);
-    for (int y = bar_top; y < bar_bottom; ++y) {
-      const double s = bar_bottom - 1 > bar_top ? double(bar_bottom - 1 - y) / double(bar_bottom - 1 - bar_top) : 0.5;
-      for (int x = x0; x < x0 + bar_width; ++x) canvas.set(x, y, colour_of(opts.map, s));
+std::string_view cost_metric_name(CostMetric m) {
+  for (const auto& [metric, name] : kCostMetricNames)
+    if (metric == m) return name;
+  return "?";
+}
+
+std::optional<CostMetric> parse_cost_metric(std::string_view name) {
+  for (const auto& [metric, n] : kCostMetricNames)
+    if (n == name) return metric;
+  return std::nullopt;
+}
+
+FalseColourImage render_cost_heatmap(const Accel& accel, KernelKind kernel, std::size_t max_hits, CostMetric metric,
+                                     const FalseColourOptions& opts, HeatmapStats& stats,
+                                     const analysis::Progress& progress) {
+  const PictureFrame fr = PictureFrame::fit(accel.scene(), opts);
+  // First the counts (the colour range needs their maximum), then the picture.
+  std::vector<std::uint64_t> cost(std::size_t(fr.view_width) * std::size_t(fr.height), 0);
+  KernelOptions ko;
+  ko.count = true;
+  tbb::enumerable_thread_specific<HitIterator> iters([&] { return HitIterator(accel, kernel, ko); });
+  tbb::enumerable_thread_specific<std::vector<Hit>> buffers;
+  FalseColourImage img = blank_image(fr);
+  Canvas canvas{img.width, img.height, img.rgb};
+  const bool completed = paint_rows(fr, canvas, progress, [&](int y, Canvas&) {
+    HitIterator& it = iters.local();
+    std::vector<Hit>& hits = buffers.local();
+    for (int x = 0; x < fr.view_width; ++x) {
+      const Counters before = it.counters();
+      hits.clear();
+      collect_hits(it, fr.ray(x, y), max_hits, hits);
+      cost[std::size_t(y) * std::size_t(fr.view_width) + std::size_t(x)] = cost_of(it.counters() - before, metric);
     }
-    canvas.text(x0, margin, label(hi), glyph_scale);
-    canvas.text(x0, bar_bottom + margin, label(lo), glyph_scale);
+  });
+  stats = {};
+  stats.metric = metric;
+  stats.rays = cost.size();
+  std::size_t working = 0;
+  double sum = 0;
+  for (const std::uint64_t c : cost) {
+    sum += double(c), working += c > 0;
+    stats.max = std::max(stats.max, double(c));
   }
+  stats.mean = cost.empty() ? 0 : sum / double(cost.size());
+  stats.mean_over_scene = working ? sum / double(working) : 0;
+
+  const double lo = std::isnan(opts.range_min) ? 0.0 : opts.range_min;
+  double hi = std::isnan(opts.range_max) ? stats.max : opts.range_max;
+  if (!(hi > lo)) hi = lo + 1;
+  img.range_min = lo;
+  img.range_max = hi;
+  for (int y = 0; y < fr.height; ++y)
+    for (int x = 0; x < fr.view_width; ++x) {
+      const std::uint64_t c = cost[std::size_t(y) * std::size_t(fr.view_width) + std::size_t(x)];
+      if (c == 0) continue;
+      ++img.pixels_hit;
+      canvas.set(x, y, colour_of(opts.map, (double(c) - lo) / (hi - lo)));
+    }
+  img.completed = completed;
+  draw_legend(fr, canvas, opts.map, lo, hi);
   return img;
 }
 

@@ -4,7 +4,9 @@
 // value, white background, colour bar with the value range. No VTK, no display needed.
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "pierce/analysis/progress.h"
@@ -34,6 +36,20 @@ struct FalseColourOptions {
   KernelKind kernel = KernelKind::queue;
 };
 
+// The picture's frame: an orthographic camera fitted to the scene's bounds seen along
+// opts.view_dir, the image area (view_width x height pixels, from the left) and the colour bar
+// strip beside it. Throws std::invalid_argument on bad sizes or view direction (as the renderers).
+struct PictureFrame {
+  int width = 0, height = 0, view_width = 0, legend_width = 0, glyph_scale = 1, label_width = 0;
+  bool legend = false;
+  Vec3d f, right, cam_up, eye, light;
+  double pixel = 0;  // pixel size in scene units
+
+  static PictureFrame fit(const Scene& scene, const FalseColourOptions& opts);
+  // The primary ray of pixel (x, y), x < view_width, rows from the top.
+  Ray ray(int x, int y) const;
+};
+
 struct FalseColourImage {
   int width = 0, height = 0;
   std::vector<double> rgb;  // width * height * 3 samples in [0, 1], rows from the top
@@ -41,6 +57,26 @@ struct FalseColourImage {
   std::size_t pixels_hit = 0;
   bool completed = true;  // false if cancelled through the progress callback
 };
+
+// Which work a traversal heat map shows per pixel (Gribble 2016, from the counting kernels).
+enum class CostMetric { traversal_steps, node_tests, prim_tests };
+std::string_view cost_metric_name(CostMetric m);
+std::optional<CostMetric> parse_cost_metric(std::string_view name);
+
+struct HeatmapStats {
+  CostMetric metric = CostMetric::traversal_steps;
+  double mean = 0, max = 0;      // per pixel, over every pixel of the view
+  double mean_over_scene = 0;    // per pixel whose ray met the scene's box
+  std::size_t rays = 0;          // pixels traced (the view, without the colour bar)
+};
+
+// Gribble's heat map of traversal work: one ray per pixel (the camera of render_false_colour),
+// traced by `kernel`'s counting variant for up to `max_hits` hits (0 = all); each pixel coloured
+// by its ray's count of `metric`. Pixels whose ray does no work at all stay white. opts.kernel is
+// ignored; the colour range defaults to 0 .. the maximum.
+FalseColourImage render_cost_heatmap(const Accel& accel, KernelKind kernel, std::size_t max_hits, CostMetric metric,
+                                     const FalseColourOptions& opts, HeatmapStats& stats,
+                                     const analysis::Progress& progress = {});
 
 // Colour of value s in [0, 1] (clamped) under the map.
 Vec3d colour_of(ColourMap map, double s);

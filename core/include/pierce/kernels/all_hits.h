@@ -9,7 +9,8 @@
 
 namespace pierce {
 
-template <typename T>
+// C: the counter policy (counters.h).
+template <typename T, class C = NoCounters>
 class AllHitsKernel {
  public:
   explicit AllHitsKernel(const WideBvh<T>& bvh, HitOrder order = {})
@@ -34,7 +35,7 @@ class AllHitsKernel {
     return true;
   }
 
-  Counters counters;
+  C counters;
 
  private:
   struct Gather : TraversalPolicy<T> {

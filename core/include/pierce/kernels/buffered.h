@@ -15,7 +15,8 @@
 
 namespace pierce {
 
-template <typename T, std::size_t Capacity = 16>
+// C: the counter policy (counters.h).
+template <typename T, class C = NoCounters, std::size_t Capacity = 16>
 class BufferedKernel {
  public:
   explicit BufferedKernel(const WideBvh<T>& bvh, HitOrder order = {})
@@ -49,7 +50,7 @@ class BufferedKernel {
     }
   }
 
-  Counters counters;
+  C counters;
 
  private:
   struct Buffer : TraversalPolicy<T> {

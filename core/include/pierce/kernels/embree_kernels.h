@@ -16,7 +16,7 @@ namespace pierce {
 // Shared ray setup: rebasing and the Embree-frame ray for a query.
 class EmbreeExactBase {
  protected:
-  explicit EmbreeExactBase(const EmbreeAccel& acc, HitOrder order, EmbreeQuery::Mode mode);
+  EmbreeExactBase(const EmbreeAccel& acc, HitOrder order, EmbreeQuery::Mode mode, bool count);
   // Prepares q_ for `ray`; false if the ray cannot meet the scene.
   bool setup(const Ray& ray);
   // Runs one rtcIntersect1 over Pierce-frame range [lo, hi].
@@ -26,23 +26,24 @@ class EmbreeExactBase {
   EmbreeQuery q_;
   Vec3d org_, dir_;
   bool live_ = false;
+  bool count_ = false;
 
  public:
-  Counters counters;
+  Counters counters;  // kept only when constructed with count = true
 };
 
 class EmbreeRestartKernel : public EmbreeExactBase {
  public:
-  explicit EmbreeRestartKernel(const EmbreeAccel& acc, HitOrder order = {})
-      : EmbreeExactBase(acc, order, EmbreeQuery::Mode::restart) {}
+  explicit EmbreeRestartKernel(const EmbreeAccel& acc, HitOrder order = {}, bool count = false)
+      : EmbreeExactBase(acc, order, EmbreeQuery::Mode::restart, count) {}
   void begin(const Ray& ray, std::size_t max_hits = 0);
   bool next(Hit& out);
 };
 
 class EmbreeFilterKernel : public EmbreeExactBase {
  public:
-  explicit EmbreeFilterKernel(const EmbreeAccel& acc, HitOrder order = {})
-      : EmbreeExactBase(acc, order, EmbreeQuery::Mode::all) {}
+  explicit EmbreeFilterKernel(const EmbreeAccel& acc, HitOrder order = {}, bool count = false)
+      : EmbreeExactBase(acc, order, EmbreeQuery::Mode::all, count) {}
   void begin(const Ray& ray, std::size_t max_hits = 0);
   bool next(Hit& out);
 
@@ -53,8 +54,8 @@ class EmbreeFilterKernel : public EmbreeExactBase {
 
 class EmbreeNodeCullKernel : public EmbreeExactBase {
  public:
-  explicit EmbreeNodeCullKernel(const EmbreeAccel& acc, HitOrder order = {})
-      : EmbreeExactBase(acc, order, EmbreeQuery::Mode::closest_n) {}
+  explicit EmbreeNodeCullKernel(const EmbreeAccel& acc, HitOrder order = {}, bool count = false)
+      : EmbreeExactBase(acc, order, EmbreeQuery::Mode::closest_n, count) {}
   void begin(const Ray& ray, std::size_t max_hits = 0);
   bool next(Hit& out);
 
@@ -68,14 +69,15 @@ class EmbreeNodeCullKernel : public EmbreeExactBase {
 // Inexact baseline: what a rendering kernel does. epsilon = epsilon_rel * scene diagonal.
 class EpsilonKernel {
  public:
-  EpsilonKernel(const EmbreeAccel& acc, double epsilon_rel = 1e-5);
+  explicit EpsilonKernel(const EmbreeAccel& acc, double epsilon_rel = 1e-5, bool count = false);
   void begin(const Ray& ray, std::size_t max_hits = 0);
   bool next(Hit& out);
-  Counters counters;
+  Counters counters;  // kept only when constructed with count = true
 
  private:
   const EmbreeAccel* acc_;
   double eps_;
+  bool count_;
   Ray ray_;
   float tnear_ = 0;
   bool done_ = true;

@@ -28,7 +28,7 @@ struct EmbreeQuery {
   Hit best;                       // restart
   std::vector<Hit>* hits = nullptr;  // all: unsorted; closest_n: max-heap in hit order
   std::size_t n = 0;
-  Counters* counters = nullptr;
+  Counters* counters = nullptr;  // null: the kernel does not count
 
   // Embree-frame bounds around a Pierce-frame t, widened to absorb both sides' rounding.
   double slack(double t) const { return std::ldexp(std::abs(t), -18) + 4.0 * double(ray.pad); }

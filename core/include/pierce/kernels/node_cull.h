@@ -12,7 +12,8 @@
 
 namespace pierce {
 
-template <typename T>
+// C: the counter policy (counters.h).
+template <typename T, class C = NoCounters>
 class NodeCullKernel {
  public:
   explicit NodeCullKernel(const WideBvh<T>& bvh, HitOrder order = {})
@@ -42,7 +43,7 @@ class NodeCullKernel {
     return true;
   }
 
-  Counters counters;
+  C counters;
 
  private:
   struct HitBefore {

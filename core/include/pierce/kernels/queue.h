@@ -10,7 +10,8 @@
 
 namespace pierce {
 
-template <typename T>
+// C: the counter policy (counters.h).
+template <typename T, class C = NoCounters>
 class QueueKernel {
  public:
   explicit QueueKernel(const WideBvh<T>& bvh, HitOrder order = {})
@@ -41,7 +42,7 @@ class QueueKernel {
     }
   }
 
-  Counters counters;
+  C counters;
 
  private:
   struct HitAfter {

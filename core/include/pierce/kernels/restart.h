@@ -6,7 +6,8 @@
 
 namespace pierce {
 
-template <typename T>
+// C: the counter policy (counters.h).
+template <typename T, class C = NoCounters>
 class RestartKernel {
  public:
   explicit RestartKernel(const WideBvh<T>& bvh, HitOrder order = {})
@@ -32,7 +33,7 @@ class RestartKernel {
     return true;
   }
 
-  Counters counters;
+  C counters;
 
  private:
   // The closest hit after last_; hi shrinks to it, which culls farther nodes.
