@@ -33,6 +33,7 @@
 #include "bench_scenes.h"
 #include "embree_reference.h"
 #include "pierce/bvh_builder.h"
+#include "pierce/io/false_colour.h"
 #include "pierce/kernel.h"
 
 namespace pierce::bench {
@@ -116,6 +117,8 @@ struct Settings {
   std::vector<std::size_t> columns{1, 5, 15, 0};
   int reps = 3;
   bool count = false;  // time the kernels' counting variants and print their counters
+  std::string heatmap_dir;  // non-empty: write traversal heat maps of each scene there
+  bool force = false;       // overwrite existing heat maps
 };
 
 // Every cell of every row: a warm-up on the first eighth of the rays, then `reps` timed passes
@@ -542,6 +545,30 @@ constexpr KernelKind kRowOrder[] = {KernelKind::restart,  KernelKind::embree_res
                                     KernelKind::embree_filter, KernelKind::queue,   KernelKind::buffered,
                                     KernelKind::nodecull, KernelKind::embree_nodecull, KernelKind::epsilon};
 
+// Gribble's heat maps of traversal steps for the scene: `queue` for the first hit and `filter` for
+// all hits (the best exact kernels there), 480x360, the default view of `pierce thickness --png`.
+void write_heatmaps(const BenchScene& s, const Accel& accel, const Settings& st) {
+  FalseColourOptions fo;
+  fo.width = 480;
+  fo.height = 360;
+  for (const auto& [kind, n] : {std::pair{KernelKind::queue, std::size_t(1)}, std::pair{KernelKind::filter, std::size_t(0)}}) {
+    const std::filesystem::path path = std::filesystem::path(st.heatmap_dir) /
+                                       ("heat_" + s.name + "_" + std::string(kernel_name(kind)) + "_" +
+                                        (n == 0 ? std::string("all") : std::to_string(n)) + ".png");
+    if (std::filesystem::exists(path) && !st.force)
+      throw std::runtime_error("--heatmaps: " + path.string() + " exists; pass --force to overwrite it");
+    HeatmapStats stats;
+    const FalseColourImage img = render_cost_heatmap(accel, kind, n, CostMetric::traversal_steps, fo, stats);
+    const std::string png = false_colour_png(img);
+    std::ofstream out(path, std::ios::binary);
+    out.write(png.data(), std::streamsize(png.size()));
+    if (!out) throw std::runtime_error("--heatmaps: cannot write " + path.string());
+    std::cout << "heat map " << path.string() << ": " << kernel_name(kind) << ", " << column_title(n)
+              << ", traversal steps per pixel: mean " << fmt("%.2f", stats.mean) << " (" << fmt("%.2f", stats.mean_over_scene)
+              << " where the ray does work), max " << fmt("%.0f", stats.max) << "\n";
+  }
+}
+
 SceneResult run_scene(const BenchScene& s, const std::vector<KernelKind>& kernels, const Settings& st) {
   SceneResult r;
   r.scene = &s;
@@ -565,6 +592,7 @@ SceneResult run_scene(const BenchScene& s, const std::vector<KernelKind>& kernel
   r.reference_mrays = mrays_per_s(r.rows.front().cells[0], s.rays.size());
   check_agreement(r, st);
   count_wrong_rays(r);
+  if (!st.heatmap_dir.empty()) write_heatmaps(s, accel, st);
   return r;
 }
 
@@ -591,7 +619,9 @@ int run(int argc, char** argv) {
   app.add_flag("--counters", st.count,
                "time the kernels' counting variants and print node tests, traversal steps and primitive tests per ray");
   app.add_option("--json", json_path, "also write every number to this JSON file");
-  app.add_flag("--force", force, "overwrite the --json file if it exists");
+  app.add_flag("--force", force, "overwrite the --json file (and --heatmaps pictures) if they exist");
+  app.add_option("--heatmaps", st.heatmap_dir,
+                 "write Gribble's traversal heat maps of each scene into this directory (queue, first hit; filter, all)");
   auto* reps_opt = app.add_option("--reps", st.reps, "timed repetitions per cell, median reported (default 3)")
                        ->check(CLI::Range(1, 100));
   app.add_option("--kernels", kernel_list, "comma-separated kernel rows to run (default: all)");
@@ -599,6 +629,11 @@ int run(int argc, char** argv) {
   std::string column_list;
   app.add_option("--columns", column_list, "comma-separated N of the columns, 0 or all = all hits (default 1,5,15,all)");
   CLI11_PARSE(app, argc, argv);
+  st.force = force;
+  if (!st.heatmap_dir.empty() && !std::filesystem::is_directory(st.heatmap_dir)) {
+    std::cerr << "error: --heatmaps " << st.heatmap_dir << ": not a directory\n";
+    return 2;
+  }
 
   if (!column_list.empty()) {
     st.columns.clear();
