@@ -40,6 +40,38 @@ grep -q "2 without exit" "$WORK/stdout" || fail "open box: summary lacks the no-
 run "per vertex" "$PIERCE" thickness "$WORK/boxes.obj" -o "$WORK/v.csv"
 [ "$(($(wc -l <"$WORK/v.csv") - 1))" -eq 16 ] || fail "per vertex: expected 16 rows"
 
+# STL stores three corners per facet; they are welded by exact position, so a box in STL (ASCII
+# and binary) has 8 vertex rows, as ParaView shows it, each measuring the box along the averaged
+# normal (the corner diagonal, sqrt 3 for the unit cube).
+$PY - "$WORK" <<'PYEOF' || fail "writing the STL boxes"
+import struct, sys
+v = [(x, y, z) for z in (0, 1) for y in (0, 1) for x in (0, 1)]
+q = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+tris = [t for a, b, c, d in q for t in ((a, b, c), (a, c, d))]
+with open(sys.argv[1] + "/box.stl", "w") as f:
+    f.write("solid box\n")
+    for t in tris:
+        f.write(" facet normal 0 0 0\n  outer loop\n")
+        for i in t: f.write("   vertex %g %g %g\n" % v[i])
+        f.write("  endloop\n endfacet\n")
+    f.write("endsolid box\n")
+with open(sys.argv[1] + "/box_bin.stl", "wb") as f:
+    f.write(b"\0" * 80 + struct.pack("<I", len(tris)))
+    for t in tris: f.write(struct.pack("<12fH", 0, 0, 0, *[c for i in t for c in v[i]], 0))
+PYEOF
+for stl in box box_bin; do
+  run "per vertex $stl.stl" "$PIERCE" thickness "$WORK/$stl.stl" -o "$WORK/$stl.csv"
+  $PY - "$WORK/$stl.csv" <<'PYEOF' || fail "$stl.stl: one row per welded vertex"
+import csv, math, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert len(rows) == 8, len(rows)
+assert len({(r["x"], r["y"], r["z"]) for r in rows}) == 8
+assert all(abs(float(r["thickness"]) - math.sqrt(3)) < 1e-6 for r in rows), rows
+PYEOF
+  "$PIERCE" info "$WORK/$stl.stl" | grep -q "triangles 12, vertices 8 (8 distinct positions)" ||
+    fail "$stl.stl: info does not report 8 welded vertices"
+done
+
 # JSON: per-solid statistics and elements.
 run "json" "$PIERCE" thickness "$WORK/boxes.obj" --per face -o "$WORK/t.json"
 $PY - "$WORK/t.json" <<'PYEOF' || fail "json content"

@@ -1,10 +1,13 @@
 // Mesh diagnostics and the exact predicates they and the coplanar search rely on.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <random>
 
 #include "analysis_scenes.h"
 #include "pierce/analysis/exact_predicates.h"
+#include "pierce/analysis/mesh_topology.h"
 #include "pierce/analysis/mesh_report.h"
 
 namespace pierce::test {
@@ -69,6 +72,39 @@ TEST(MeshReport, WeldsUnsharedVerticesAndCountsDegenerates) {
   EXPECT_EQ(rep[0].welded_vertices, 8u);
   EXPECT_EQ(rep[0].degenerate, 1u);
   EXPECT_TRUE(rep[0].closed);
+}
+
+// first_occurrence against the definition (lowest index with the same welded corners, any
+// winding), on random triangles over few vertices, so there are many repeats, and with a fan of
+// 200 triangles around one vertex (longer than the pairwise-compared buckets).
+TEST(MeshTopology, FirstOccurrenceIsTheLowestIndexWithTheSameCorners) {
+  std::mt19937 rng(5);
+  Geometry g;
+  for (int i = 0; i < 40; ++i) g.vertices.push_back({double(i), double(i * i % 7), 0});
+  g.vertices.push_back(g.vertices[3]);  // a welded duplicate of vertex 3
+  const auto nv = std::uint32_t(g.vertices.size());
+  auto pick = [&](std::uint32_t n) { return std::uint32_t(rng() % n); };
+  for (int i = 0; i < 3000; ++i) g.triangles.push_back({pick(12), pick(12), pick(nv)});
+  for (std::uint32_t k = 0; k < 200; ++k) g.triangles.push_back({0, 1 + k % 39, 1 + (k * 7 + 3) % 39});
+  const auto weld = weld_by_position(g.vertices);
+  const auto first = first_occurrence(g, weld);
+  auto key = [&](std::size_t i) {
+    std::array<std::uint32_t, 3> w{weld[g.triangles[i][0]], weld[g.triangles[i][1]], weld[g.triangles[i][2]]};
+    std::sort(w.begin(), w.end());
+    return w;
+  };
+  std::size_t repeats = 0;
+  for (std::size_t i = 0; i < g.triangles.size(); ++i) {
+    std::size_t want = i;
+    for (std::size_t j = 0; j < i; ++j)
+      if (key(j) == key(i)) {
+        want = j;
+        break;
+      }
+    ASSERT_EQ(first[i], want) << "triangle " << i;
+    repeats += want != i;
+  }
+  EXPECT_GT(repeats, 500u);
 }
 
 TEST(ExactPredicates, DecideWhereDoublesRound) {

@@ -1,29 +1,17 @@
 #include "pierce/analysis/mesh_topology.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
-#include <unordered_map>
+
+#include "pierce/position_index.h"
 
 namespace pierce::analysis {
 
 namespace {
-
-struct PositionKey {
-  std::uint64_t x, y, z;
-  bool operator==(const PositionKey&) const = default;
-};
-struct PositionHash {
-  std::size_t operator()(const PositionKey& k) const {
-    std::uint64_t h = k.x * 0x9E3779B97F4A7C15ull;
-    h ^= k.y + 0x7F4A7C159E3779B9ull + (h << 6) + (h >> 2);
-    h ^= k.z + 0x94D049BB133111EBull + (h << 6) + (h >> 2);
-    return std::size_t(h);
-  }
-};
-
-std::uint64_t bits(double v) { return std::bit_cast<std::uint64_t>(v == 0.0 ? 0.0 : v); }
 
 std::array<std::uint32_t, 3> welded(const Tri& t, const std::vector<std::uint32_t>& weld) {
   return {weld[t[0]], weld[t[1]], weld[t[2]]};
@@ -33,12 +21,8 @@ std::array<std::uint32_t, 3> welded(const Tri& t, const std::vector<std::uint32_
 
 std::vector<std::uint32_t> weld_by_position(const std::vector<Vec3d>& vertices) {
   std::vector<std::uint32_t> rep(vertices.size());
-  std::unordered_map<PositionKey, std::uint32_t, PositionHash> first;
-  first.reserve(vertices.size());
-  for (std::size_t i = 0; i < vertices.size(); ++i) {
-    const Vec3d& p = vertices[i];
-    rep[i] = first.try_emplace(PositionKey{bits(p.x), bits(p.y), bits(p.z)}, std::uint32_t(i)).first->second;
-  }
+  PositionIndex first(vertices.size(), PositionIndex::Zeros::merged);
+  for (std::size_t i = 0; i < vertices.size(); ++i) rep[i] = first.find_or_insert(vertices, std::uint32_t(i));
   return rep;
 }
 
@@ -86,17 +70,48 @@ std::size_t duplicate_triangles(const Geometry& g, const std::vector<std::uint32
 }
 
 std::vector<std::uint32_t> first_occurrence(const Geometry& g, const std::vector<std::uint32_t>& weld) {
-  std::vector<std::pair<std::array<std::uint32_t, 3>, std::uint32_t>> keys;
-  keys.reserve(g.triangles.size());
-  for (std::size_t i = 0; i < g.triangles.size(); ++i) {
-    auto w = welded(g.triangles[i], weld);
+  // Triangles with the same welded corners share their lowest corner: bucket the triangles by it
+  // (a counting sort, in triangle order) and compare within each bucket, which is about a vertex's
+  // valence long. Long buckets (fan centres) are sorted instead of compared pairwise.
+  const std::size_t n = g.triangles.size();
+  using Key = std::array<std::uint32_t, 3>;
+  std::vector<Key> keys(n);
+  std::vector<std::uint32_t> start(g.vertices.size() + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    Key& w = keys[i];
+    w = welded(g.triangles[i], weld);
     std::sort(w.begin(), w.end());
-    keys.emplace_back(w, std::uint32_t(i));
+    ++start[w[0] + 1];
   }
-  std::sort(keys.begin(), keys.end());
-  std::vector<std::uint32_t> first(g.triangles.size());
-  for (std::size_t k = 0; k < keys.size(); ++k)
-    first[keys[k].second] = k > 0 && keys[k].first == keys[k - 1].first ? first[keys[k - 1].second] : keys[k].second;
+  for (std::size_t v = 0; v < g.vertices.size(); ++v) start[v + 1] += start[v];
+  std::vector<std::uint32_t> bucket(n);
+  {
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) bucket[fill[keys[i][0]]++] = std::uint32_t(i);
+  }
+  std::vector<std::uint32_t> first(n);
+  constexpr std::size_t kPairwise = 64;
+  std::vector<std::uint32_t> order;
+  for (std::size_t v = 0; v < g.vertices.size(); ++v) {
+    const std::uint32_t* b = bucket.data() + start[v];
+    const std::size_t m = start[v + 1] - start[v];
+    if (m <= kPairwise) {
+      for (std::size_t x = 0; x < m; ++x) {
+        first[b[x]] = b[x];
+        for (std::size_t y = 0; y < x; ++y)
+          if (keys[b[y]] == keys[b[x]]) {
+            first[b[x]] = first[b[y]];
+            break;
+          }
+      }
+      continue;
+    }
+    order.assign(b, b + m);
+    std::sort(order.begin(), order.end(),
+              [&](std::uint32_t p, std::uint32_t q) { return keys[p] != keys[q] ? keys[p] < keys[q] : p < q; });
+    for (std::size_t x = 0; x < m; ++x)
+      first[order[x]] = x > 0 && keys[order[x]] == keys[order[x - 1]] ? first[order[x - 1]] : order[x];
+  }
   return first;
 }
 
@@ -111,18 +126,34 @@ std::vector<Vec3d> vertex_normals(const Geometry& g, const std::vector<std::uint
   std::vector<Vec3d> acc(g.vertices.size());
   // Distinct welded triangles (any winding) contribute once; the first occurrence wins.
   const auto first = first_occurrence(g, weld);
-  for (std::size_t i = 0; i < g.triangles.size(); ++i) {
-    if (first[i] != i) continue;
-    const Vec3d n = face_normal(g, i);
-    if (n == Vec3d{}) continue;
-    const Tri& t = g.triangles[i];
-    for (int c = 0; c < 3; ++c) {
-      const Vec3d p = g.vertices[t[c]];
-      const Vec3d e1 = g.vertices[t[(c + 1) % 3]] - p, e2 = g.vertices[t[(c + 2) % 3]] - p;
-      const double l1 = length(e1), l2 = length(e2);
-      if (!(l1 > 0 && l2 > 0)) continue;
-      const double angle = std::acos(std::clamp(dot(e1, e2) / (l1 * l2), -1.0, 1.0));
-      acc[weld[t[c]]] = acc[weld[t[c]]] + n * angle;
+  // Each corner adds the face normal weighted by its angle. The contributions (the acos is the
+  // cost) are computed in parallel a block at a time and added in triangle order, so the sums
+  // are the same bits on any thread count.
+  constexpr std::size_t kBlock = 1 << 16;
+  std::vector<std::array<Vec3d, 3>> contrib(std::min(kBlock, g.triangles.size()));
+  for (std::size_t b0 = 0; b0 < g.triangles.size(); b0 += kBlock) {
+    const std::size_t b1 = std::min(g.triangles.size(), b0 + kBlock);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(b0, b1, 1024), [&](const auto& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+        std::array<Vec3d, 3>& out = contrib[i - b0];
+        out = {};
+        if (first[i] != i) continue;
+        const Vec3d n = face_normal(g, i);
+        if (n == Vec3d{}) continue;
+        const Tri& t = g.triangles[i];
+        for (int c = 0; c < 3; ++c) {
+          const Vec3d p = g.vertices[t[c]];
+          const Vec3d e1 = g.vertices[t[(c + 1) % 3]] - p, e2 = g.vertices[t[(c + 2) % 3]] - p;
+          const double l1 = length(e1), l2 = length(e2);
+          if (!(l1 > 0 && l2 > 0)) continue;
+          out[std::size_t(c)] = n * std::acos(std::clamp(dot(e1, e2) / (l1 * l2), -1.0, 1.0));
+        }
+      }
+    });
+    for (std::size_t i = b0; i < b1; ++i) {
+      if (first[i] != i) continue;
+      const Tri& t = g.triangles[i];
+      for (int c = 0; c < 3; ++c) acc[weld[t[c]]] = acc[weld[t[c]]] + contrib[i - b0][std::size_t(c)];
     }
   }
   std::vector<Vec3d> out(g.vertices.size());

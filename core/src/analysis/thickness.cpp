@@ -187,6 +187,12 @@ ThicknessResult compute_thickness(const Accel& accel, const ThicknessOptions& op
   ThicknessResult res;
   res.per = opts.per;
   SampleSet set;
+  std::size_t elements = 0;
+  for (std::uint32_t g : solids)
+    elements += opts.per == SampleAt::vertex ? scene.geometry(g).vertices.size() : scene.geometry(g).triangles.size();
+  res.solid.reserve(elements), res.element.reserve(elements), res.point.reserve(elements);
+  res.normal.reserve(elements), res.thickness.reserve(elements), res.thin.reserve(elements);
+  res.status.reserve(elements), set.samples.reserve(elements);
   std::vector<std::pair<std::size_t, std::size_t>> ranges;  // result range per entry of `solids`
   for (std::uint32_t g : solids) {
     const Geometry& geo = scene.geometry(g);

@@ -1,10 +1,14 @@
 // STL: binary (80-byte header, uint32 count, 50 bytes per facet, little endian) or ASCII
 // (solid/facet/outer loop/vertex/endloop/endfacet/endsolid). Facet normals are ignored: Pierce
-// derives facing from the vertex order, as every STL consumer does.
+// derives facing from the vertex order, as every STL consumer does. Corners with bit-identical
+// coordinates are welded into one vertex (first occurrence order), as ParaView's reader does:
+// the triangles and their order are the file's, so hits and prim ids do not change, and per-vertex
+// results are one per vertex of the surface rather than three per facet.
 #include <algorithm>
 #include <cstdint>
 
 #include "io_util.h"
+#include "pierce/position_index.h"
 #include "readers.h"
 
 namespace pierce::io {
@@ -13,6 +17,15 @@ namespace {
 
 constexpr std::size_t kHeaderBytes = 84;
 constexpr std::size_t kFacetBytes = 50;
+
+// The index of p among `vertices`, appended if it is new.
+std::uint32_t add_welded(std::vector<Vec3d>& vertices, PositionIndex& weld, const Vec3d& p) {
+  const auto i = std::uint32_t(vertices.size());
+  vertices.push_back(p);
+  const std::uint32_t found = weld.find_or_insert(vertices, i);
+  if (found != i) vertices.pop_back();
+  return found;
+}
 
 bool starts_with_solid(const std::string& data) {
   const std::string_view s = trim(std::string_view(data).substr(0, 512));
@@ -49,10 +62,13 @@ std::vector<LoadedMesh> read_binary(const std::string& path, const std::string& 
   }
   LoadedMesh m;
   m.name = file_stem(path);
-  m.vertices.reserve(std::size_t(n) * 3);
+  // A closed triangle mesh has about half as many vertices as triangles.
+  m.vertices.reserve(std::size_t(n) / 2 + 3);
   m.triangles.reserve(n);
+  PositionIndex weld(std::size_t(n) / 2 + 3);
   for (std::uint32_t i = 0; i < n; ++i) {
     const std::size_t base = kHeaderBytes + std::size_t(i) * kFacetBytes;
+    Tri tri;
     for (int k = 0; k < 3; ++k) {
       double c[3];
       for (int a = 0; a < 3; ++a) {
@@ -62,9 +78,9 @@ std::vector<LoadedMesh> read_binary(const std::string& path, const std::string& 
           fail(path, "triangle " + std::to_string(i) + ", vertex " + std::to_string(k) + " (byte offset " +
                          std::to_string(off) + "): " + p);
       }
-      m.vertices.push_back({c[0], c[1], c[2]});
+      tri[std::size_t(k)] = add_welded(m.vertices, weld, {c[0], c[1], c[2]});
     }
-    m.triangles.push_back({3 * i, 3 * i + 1, 3 * i + 2});
+    m.triangles.push_back(tri);
   }
   return {std::move(m)};
 }
@@ -82,6 +98,7 @@ std::vector<LoadedMesh> read_ascii(const std::string& path, const std::string& d
     LoadedMesh m;
     m.name = std::string(ts.rest_of_line());
     if (m.name.empty()) m.name = file_stem(path);
+    PositionIndex weld(1024);
     std::vector<std::uint32_t> poly;
     for (;;) {
       if (!ts.next(tok)) fail_at_line(path, ts.line(), "unexpected end of file, expected 'facet' or 'endsolid'");
@@ -110,8 +127,7 @@ std::vector<LoadedMesh> read_ascii(const std::string& path, const std::string& d
           if (const char* p = coordinate_problem(c[a]))
             fail_at_line(path, ts.line(), std::string(p) + " " + quoted(tok));
         }
-        poly.push_back(std::uint32_t(m.vertices.size()));
-        m.vertices.push_back({c[0], c[1], c[2]});
+        poly.push_back(add_welded(m.vertices, weld, {c[0], c[1], c[2]}));
       }
       if (poly.size() < 3)
         fail_at_line(path, ts.line(), "facet with " + std::to_string(poly.size()) + " vertices (needs at least 3)");

@@ -31,7 +31,9 @@ struct LoadedMesh {
 //    a mesh named after the file. Each mesh keeps the vertices its faces use, in file order; prim is
 //    the face's index among its own mesh's faces.
 //  - ASCII STL: one mesh per `solid ... endsolid` block.
-// STL vertices are not welded (3 per facet): hits do not depend on vertex identity.
+// STL corners with bit-identical coordinates are welded into one vertex (in order of first
+// occurrence), as ParaView's STL reader does; triangles keep the file's order and corners, so
+// hits and prim ids are those of the unwelded facets.
 // Throws InputError "path:line: what is wrong" (binary data: byte offset or element index) for a
 // missing or empty file, unknown extension, truncated data, bad numbers, out-of-range indices, faces
 // with fewer than 3 vertices, non-finite or beyond-float-range coordinates, and files without faces.
