@@ -36,11 +36,6 @@ struct ClassifyCli {
   bool force = false, progress = false;
 };
 
-int cancelled() {
-  std::cerr << "pierce: cancelled\n";
-  return kExitCancelled;
-}
-
 std::string trim(const std::string& s) {
   const std::size_t a = s.find_first_not_of(" \t\r");
   if (a == std::string::npos) return {};
@@ -102,8 +97,6 @@ struct Target {
   CsgExpr expr;
 };
 
-std::string num(double v) { return exact_number(v, "nan"); }
-
 std::string short_num(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.6g", v);
@@ -128,8 +121,8 @@ void write_csv(std::FILE* f, const std::vector<Vec3d>& pts, const std::vector<Ta
   std::fputs("point,x,y,z,target,class\n", f);
   for (std::size_t p = 0; p < pts.size(); ++p)
     for (std::size_t t = 0; t < targets.size(); ++t)
-      std::fprintf(f, "%zu,%s,%s,%s,%s,%s\n", p, num(pts[p].x).c_str(), num(pts[p].y).c_str(), num(pts[p].z).c_str(),
-                   csv_field(targets[t].label).c_str(),
+      std::fprintf(f, "%zu,%s,%s,%s,%s,%s\n", p, exact_number(pts[p].x).c_str(), exact_number(pts[p].y).c_str(),
+                   exact_number(pts[p].z).c_str(), csv_field(targets[t].label).c_str(),
                    std::string(point_class_name(classes[p * targets.size() + t])).c_str());
 }
 

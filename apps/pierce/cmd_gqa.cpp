@@ -35,36 +35,6 @@ struct GqaCli {
   bool force = false, progress = false;
 };
 
-int cancelled() {
-  std::cerr << "pierce: cancelled\n";
-  return kExitCancelled;
-}
-
-// One progress bar per pass, replaced when the grid size changes (calls come from worker threads).
-class PassProgress {
- public:
-  explicit PassProgress(bool force) : force_(force) {}
-  bool update(int n, std::size_t done, std::size_t total) {
-    std::lock_guard lock(mutex_);
-    if (n != n_) {
-      if (bar_) bar_->finish();
-      bar_ = std::make_unique<ProgressBar>("gqa n=" + std::to_string(n), total, force_);
-      n_ = n;
-    }
-    return bar_->update(done);
-  }
-  void finish() {
-    std::lock_guard lock(mutex_);
-    if (bar_) bar_->finish();
-  }
-
- private:
-  bool force_;
-  std::mutex mutex_;
-  int n_ = 0;
-  std::unique_ptr<ProgressBar> bar_;
-};
-
 nlohmann::ordered_json vec(Vec3d p) {
   if (!std::isfinite(p.x)) return nullptr;
   return {p.x, p.y, p.z};
@@ -188,8 +158,11 @@ int run_gqa_cmd(const GqaCli& o) {
   const Accel accel(scene);
   if (interrupted()) return cancelled();
 
-  PassProgress progress(o.progress);
-  const GqaResult r = run_gqa(accel, go, [&](int n, std::size_t d, std::size_t t) { return progress.update(n, d, t); });
+  // One bar per pass, replaced when the grid size changes.
+  LazyProgressBar progress("gqa", o.progress);
+  const GqaResult r = run_gqa(accel, go, [&](int n, std::size_t d, std::size_t t) {
+    return progress.update("gqa n=" + std::to_string(n), d, t);
+  });
   progress.finish();
   if (!r.completed || interrupted()) return cancelled();
   if (r.unmatched_leaves || r.unclosed)

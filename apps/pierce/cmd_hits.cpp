@@ -44,11 +44,6 @@ constexpr int kExitExactDisagreement = 3;
 
 using Results = std::vector<std::vector<Hit>>;
 
-int cancelled() {
-  std::cerr << "pierce: cancelled\n";
-  return kExitCancelled;
-}
-
 std::string kernel_list() {
   std::string s;
   for (KernelKind k : kAllKernels) s += std::string(kernel_name(k)) + ", ";

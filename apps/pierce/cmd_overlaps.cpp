@@ -41,23 +41,6 @@ struct OverlapsCli {
   bool force = false, progress = false;
 };
 
-enum class Format { none, vtp, csv, json };
-
-Format format_of(const std::string& path) {
-  if (path.empty()) return Format::none;
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if (ext == ".vtp") return Format::vtp;
-  if (ext == ".csv") return Format::csv;
-  if (ext == ".json") return Format::json;
-  throw InputError(path + ": unknown output format (expected .vtp, .csv or .json)");
-}
-
-int cancelled() {
-  std::cerr << "pierce: cancelled\n";
-  return kExitCancelled;
-}
-
 // `axes:n=N`: N x N parallel rays along each of x, y and z; anything else as `pierce hits --rays`.
 std::vector<Ray> make_rays(const std::string& spec, const Scene& scene) {
   const std::string prefix = "axes:n=";
@@ -69,8 +52,6 @@ std::vector<Ray> make_rays(const std::string& spec, const Scene& scene) {
   return axis_grid_rays(scene.bounds(), int(n));
 }
 
-std::string num(double v) { return exact_number(v, "nan"); }
-
 nlohmann::ordered_json vec(Vec3d p) { return {p.x, p.y, p.z}; }
 nlohmann::ordered_json maybe(double v) { return std::isnan(v) ? nlohmann::ordered_json() : nlohmann::ordered_json(v); }
 
@@ -81,16 +62,17 @@ void write_csv(std::FILE* f, const Scene& s, const CoplanarReport& c, const RayO
            csv_field(s.geometry(b).name);
   };
   for (const InterferencePair& p : r.interferences)
-    std::fprintf(f, "interference,%s,%zu,,,,,%s,%s,%s,%s,%s\n", names(p.a, p.b).c_str(), p.count, num(p.max_depth).c_str(),
-                 num(p.penetration).c_str(), num(p.max_depth_entry.x).c_str(), num(p.max_depth_entry.y).c_str(),
-                 num(p.max_depth_entry.z).c_str());
+    std::fprintf(f, "interference,%s,%zu,,,,,%s,%s,%s,%s,%s\n", names(p.a, p.b).c_str(), p.count,
+                 exact_number(p.max_depth).c_str(), exact_number(p.penetration).c_str(),
+                 exact_number(p.max_depth_entry.x).c_str(), exact_number(p.max_depth_entry.y).c_str(),
+                 exact_number(p.max_depth_entry.z).c_str());
   for (const ContactPair& p : r.contacts)
-    std::fprintf(f, "contact,%s,%zu,,,,,,,%s,%s,%s\n", names(p.a, p.b).c_str(), p.count, num(p.where.x).c_str(),
-                 num(p.where.y).c_str(), num(p.where.z).c_str());
+    std::fprintf(f, "contact,%s,%zu,,,,,,,%s,%s,%s\n", names(p.a, p.b).c_str(), p.count,
+                 exact_number(p.where.x).c_str(), exact_number(p.where.y).c_str(), exact_number(p.where.z).c_str());
   for (const CoplanarSolidPair& p : c.solid_pairs)
     std::fprintf(f, "coplanar,%s,%zu,%zu,%zu,%zu,%s,,,%s,%s,%s\n", names(p.a, p.b).c_str(), p.pairs, p.exact_pairs,
-                 p.same_facing, p.opposite_facing, num(p.area).c_str(), num(p.where.x).c_str(), num(p.where.y).c_str(),
-                 num(p.where.z).c_str());
+                 p.same_facing, p.opposite_facing, exact_number(p.area).c_str(), exact_number(p.where.x).c_str(),
+                 exact_number(p.where.y).c_str(), exact_number(p.where.z).c_str());
 }
 
 void write_json(std::FILE* f, const Scene& s, const OverlapsCli& o, const CoplanarReport& c, const RayOverlapReport& r) {
@@ -239,29 +221,19 @@ int run_overlaps(const OverlapsCli& o) {
   const Accel accel(scene);
   if (interrupted()) return cancelled();
 
-  auto with_bar = [&](const char* label) {
-    auto once = std::make_shared<std::once_flag>();
-    auto bar = std::make_shared<std::unique_ptr<ProgressBar>>();
-    return std::make_pair(
-        [=, &o](std::size_t done, std::size_t total) {
-          std::call_once(*once, [&] { *bar = std::make_unique<ProgressBar>(label, total, o.progress); });
-          return (*bar)->update(done);
-        },
-        bar);
-  };
   CoplanarOptions copts;
   copts.tolerance = o.tol;
-  auto [cop_progress, cop_bar] = with_bar("coplanar");
-  const CoplanarReport cop = find_coplanar_overlaps(scene, copts, cop_progress);
-  if (*cop_bar) (*cop_bar)->finish();
+  LazyProgressBar cop_bar("coplanar", o.progress);
+  const CoplanarReport cop = find_coplanar_overlaps(scene, copts, std::ref(cop_bar));
+  cop_bar.finish();
   if (!cop.completed || interrupted()) return cancelled();
 
   RayOverlapOptions ropts;
   ropts.kernel = *kernel;
   ropts.epsilon_rel = o.ray_eps;
-  auto [ray_progress, ray_bar] = with_bar("rays");
-  const RayOverlapReport rep = analyse_ray_overlaps(accel, rays, ropts, ray_progress);
-  if (*ray_bar) (*ray_bar)->finish();
+  LazyProgressBar ray_bar("rays", o.progress);
+  const RayOverlapReport rep = analyse_ray_overlaps(accel, rays, ropts, std::ref(ray_bar));
+  ray_bar.finish();
   if (!rep.completed || interrupted()) return cancelled();
 
   print_summary(scene, cop, rep, o);

@@ -34,13 +34,6 @@ struct RunCli {
   bool audit = false, force = false, progress = false;
 };
 
-int cancelled() {
-  std::cerr << "pierce: cancelled\n";
-  return kExitCancelled;
-}
-
-std::string num(double v) { return exact_number(v, ""); }
-
 std::string id(std::uint32_t g) { return g == kInvalidId ? "" : std::to_string(g); }
 
 void write_rays_csv(std::FILE* f, const std::vector<Ray>& rays, const EffectsConfig& cfg, const EffectsResult& r) {
@@ -55,19 +48,23 @@ void write_rays_csv(std::FILE* f, const std::vector<Ray>& rays, const EffectsCon
   std::fprintf(f, "%s\n", head.c_str());
   for (std::size_t i = 0; i < rays.size(); ++i) {
     const Ray& q = rays[i];
-    std::string row = std::to_string(i) + "," + num(q.org.x) + "," + num(q.org.y) + "," + num(q.org.z) + "," +
-                      num(q.dir.x) + "," + num(q.dir.y) + "," + num(q.dir.z);
+    std::string row = std::to_string(i) + "," + exact_number(q.org.x) + "," + exact_number(q.org.y) + "," +
+                      exact_number(q.org.z) + "," + exact_number(q.dir.x) + "," + exact_number(q.dir.y) + "," +
+                      exact_number(q.dir.z);
     if (cfg.on(Effect::first_hit))
-      row += "," + num(r.first_t[i]) + "," + id(r.first_geom[i]) + "," + num(r.first_obliquity[i]);
+      row += "," + exact_number(r.first_t[i]) + "," + id(r.first_geom[i]) + "," + exact_number(r.first_obliquity[i]);
     if (cfg.on(Effect::thickness))
-      row += "," + id(r.thick_geom[i]) + "," + num(r.thick_los[i]) + "," + num(r.thick_normal[i]);
+      row += "," + id(r.thick_geom[i]) + "," + exact_number(r.thick_los[i]) + "," + exact_number(r.thick_normal[i]);
     if (cfg.on(Effect::transparency))
-      for (int c = 0; c < 4; ++c) row += "," + num(r.rgba[4 * i + std::size_t(c)]);
-    if (cfg.on(Effect::xray)) row += "," + num(r.transmission[i]) + "," + std::to_string(int(r.xray_settled[i]));
+      for (int c = 0; c < 4; ++c) row += "," + exact_number(r.rgba[4 * i + std::size_t(c)]);
+    if (cfg.on(Effect::xray))
+      row += "," + exact_number(r.transmission[i]) + "," + std::to_string(int(r.xray_settled[i]));
     if (cfg.on(Effect::penetration))
-      row += "," + num(r.energy[i]) + "," + num(r.stop_distance[i]) + "," + id(r.stop_geom[i]);
-    if (cfg.on(Effect::overlaps)) row += "," + std::to_string(r.overlap_count[i]) + "," + num(r.overlap_max_depth[i]);
-    if (cfg.on(Effect::classification)) row += "," + num(r.class_los[i]) + "," + num(r.areal_density[i]);
+      row += "," + exact_number(r.energy[i]) + "," + exact_number(r.stop_distance[i]) + "," + id(r.stop_geom[i]);
+    if (cfg.on(Effect::overlaps))
+      row += "," + std::to_string(r.overlap_count[i]) + "," + exact_number(r.overlap_max_depth[i]);
+    if (cfg.on(Effect::classification))
+      row += "," + exact_number(r.class_los[i]) + "," + exact_number(r.areal_density[i]);
     std::fprintf(f, "%s\n", row.c_str());
   }
 }
@@ -87,13 +84,13 @@ void write_intervals_csv(std::FILE* f, const Scene& s, const EffectsConfig& cfg,
     const std::string who =
         region ? csv_field(cfg.classification_csg->text)
                : names(std::span<const std::uint32_t>(r.class_solids).subspan(c.first, c.count));
-    std::fprintf(f, "%u,%s,%s,%s,%s,%s\n", c.ray, region ? "region" : "partition", who.c_str(), num(c.t_in).c_str(),
-                 num(c.t_out).c_str(), num(c.los).c_str());
+    std::fprintf(f, "%u,%s,%s,%s,%s,%s\n", c.ray, region ? "region" : "partition", who.c_str(),
+                 exact_number(c.t_in).c_str(), exact_number(c.t_out).c_str(), exact_number(c.los).c_str());
   }
   for (const OverlapInterval& o : r.overlap_intervals) {
     const std::uint32_t pair[2] = {o.a, o.b};
-    std::fprintf(f, "%u,overlap,%s,%s,%s,%s\n", o.ray, names(pair).c_str(), num(o.t_in).c_str(), num(o.t_out).c_str(),
-                 num(o.depth).c_str());
+    std::fprintf(f, "%u,overlap,%s,%s,%s,%s\n", o.ray, names(pair).c_str(), exact_number(o.t_in).c_str(),
+                 exact_number(o.t_out).c_str(), exact_number(o.depth).c_str());
   }
 }
 

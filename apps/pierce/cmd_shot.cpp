@@ -36,11 +36,6 @@ struct ShotCli {
   bool force = false, progress = false;
 };
 
-int cancelled() {
-  std::cerr << "pierce: cancelled\n";
-  return kExitCancelled;
-}
-
 // "X,Y,Z" -> vector; `what` names the option in errors.
 Vec3d parse_vec3(const std::string& text, const std::string& what) {
   Vec3d v;
@@ -83,8 +78,6 @@ std::string solids_text(const Scene& s, const ShotRow& r, const CsgExpr* csg, co
   return t;
 }
 
-std::string num(double v) { return exact_number(v, ""); }
-
 std::string short_num(double v) {
   if (std::isnan(v)) return "-";
   char buf[32];
@@ -124,12 +117,13 @@ void write_csv(std::FILE* f, const Scene& s, const ShotResult& r, const CsgExpr*
              "t_out\n",
              f);
   for (const ShotRow& x : r.rows)
-    std::fprintf(f, "%u,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n", x.ray, std::string(shot_kind_name(x.kind)).c_str(),
-                 csv_field(solids_text(s, x, csg, "+")).c_str(), num(x.in_point.x).c_str(), num(x.in_point.y).c_str(),
-                 num(x.in_point.z).c_str(), num(x.out_point.x).c_str(), num(x.out_point.y).c_str(),
-                 num(x.out_point.z).c_str(), num(x.los).c_str(), num(x.obliquity_in).c_str(),
-                 num(x.obliquity_out).c_str(), num(x.normal_thickness).c_str(), num(x.t_in).c_str(),
-                 num(x.t_out).c_str());
+    std::fprintf(f, "%u,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n", x.ray,
+                 std::string(shot_kind_name(x.kind)).c_str(), csv_field(solids_text(s, x, csg, "+")).c_str(),
+                 exact_number(x.in_point.x).c_str(), exact_number(x.in_point.y).c_str(),
+                 exact_number(x.in_point.z).c_str(), exact_number(x.out_point.x).c_str(),
+                 exact_number(x.out_point.y).c_str(), exact_number(x.out_point.z).c_str(), exact_number(x.los).c_str(),
+                 exact_number(x.obliquity_in).c_str(), exact_number(x.obliquity_out).c_str(),
+                 exact_number(x.normal_thickness).c_str(), exact_number(x.t_in).c_str(), exact_number(x.t_out).c_str());
 }
 
 nlohmann::ordered_json vec(Vec3d p) { return {p.x, p.y, p.z}; }

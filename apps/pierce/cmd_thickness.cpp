@@ -44,23 +44,6 @@ struct ThicknessCli {
   bool force = false, progress = false;
 };
 
-enum class Format { none, vtp, csv, json };
-
-Format format_of(const std::string& path) {
-  if (path.empty()) return Format::none;
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if (ext == ".vtp") return Format::vtp;
-  if (ext == ".csv") return Format::csv;
-  if (ext == ".json") return Format::json;
-  throw InputError(path + ": unknown output format (expected .vtp, .csv or .json)");
-}
-
-int cancelled() {
-  std::cerr << "pierce: cancelled\n";
-  return kExitCancelled;
-}
-
 // Solids by name or id.
 std::vector<std::uint32_t> resolve_solids(const Scene& scene, const std::vector<std::string>& wanted) {
   std::vector<std::uint32_t> ids;
@@ -81,20 +64,13 @@ std::vector<std::uint32_t> resolve_solids(const Scene& scene, const std::vector<
   return ids;
 }
 
-std::string number(double v) {
-  if (std::isnan(v)) return "nan";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
 void write_csv(std::FILE* f, const Scene& scene, const ThicknessResult& r) {
   std::fputs("id,solid,element,x,y,z,thickness,thin,status,name\n", f);
   for (std::size_t i = 0; i < r.size(); ++i) {
     const Vec3d p = r.point[i];
-    std::fprintf(f, "%zu,%u,%u,%s,%s,%s,%s,%d,%s,%s\n", i, r.solid[i], r.element[i], number(p.x).c_str(),
-                 number(p.y).c_str(), number(p.z).c_str(), number(r.thickness[i]).c_str(), int(r.thin[i]),
-                 std::string(analysis::status_name(r.status[i])).c_str(),
+    std::fprintf(f, "%zu,%u,%u,%s,%s,%s,%s,%d,%s,%s\n", i, r.solid[i], r.element[i], exact_number(p.x).c_str(),
+                 exact_number(p.y).c_str(), exact_number(p.z).c_str(), exact_number(r.thickness[i]).c_str(),
+                 int(r.thin[i]), std::string(analysis::status_name(r.status[i])).c_str(),
                  csv_field(scene.geometry(r.solid[i]).name).c_str());
   }
 }
@@ -108,7 +84,7 @@ nlohmann::ordered_json solid_stats_json(const analysis::SolidThickness& s, const
     j["max"] = s.summary.max;
     j["mean"] = s.summary.mean;
     nlohmann::ordered_json p;
-    for (auto [q, v] : s.summary.percentiles) p["p" + number(q)] = v;
+    for (auto [q, v] : s.summary.percentiles) p["p" + exact_number(q)] = v;
     j["percentiles"] = p;
     j["histogram"] = {{"edges", s.summary.histogram.edges}, {"counts", s.summary.histogram.counts}};
   }
@@ -249,13 +225,9 @@ int run_thickness(const ThicknessCli& o) {
   const Accel accel(scene);
   if (interrupted()) return cancelled();
 
-  std::once_flag bar_once;
-  std::unique_ptr<ProgressBar> bar;
-  const ThicknessResult r = analysis::compute_thickness(accel, opts, [&](std::size_t done, std::size_t total) {
-    std::call_once(bar_once, [&] { bar = std::make_unique<ProgressBar>("thickness", total, o.progress); });
-    return bar->update(done);
-  });
-  if (bar) bar->finish();
+  LazyProgressBar bar("thickness", o.progress);
+  const ThicknessResult r = analysis::compute_thickness(accel, opts, std::ref(bar));
+  bar.finish();
   if (!r.completed || interrupted()) return cancelled();
 
   print_summary(scene, r, opts);

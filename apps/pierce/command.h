@@ -1,14 +1,23 @@
 #pragma once
-// Each `pierce` subcommand lives in its own cmd_*.cpp and registers itself here.
+// Each `pierce` subcommand lives in its own cmd_*.cpp and registers itself here; this header also
+// brings what every subcommand shares: Ctrl-C and cancelled() (interrupt.h), progress bars
+// (progress.h) and the output format named by a file's extension.
 #include <CLI/CLI.hpp>
 
 #include <functional>
+#include <string>
+
+#include "interrupt.h"
+#include "progress.h"
 
 namespace pierce::cli {
 
-// Adds the subcommand to `app`; the returned callback runs it and returns the exit code.
-using Register = std::function<std::function<int()>(CLI::App& app)>;
+// Output formats of the analyses' -o FILE, from the extension (case-insensitive); none for an
+// empty path. Throws InputError naming the file for any other extension.
+enum class Format { none, vtp, csv, json };
+Format format_of(const std::string& path);
 
+// Each returns the callback that runs the subcommand (after parsing) and returns its exit code.
 std::function<int()> register_hits(CLI::App& app);
 std::function<int()> register_info(CLI::App& app);
 std::function<int()> register_thickness(CLI::App& app);

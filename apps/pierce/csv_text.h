@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
-#include <string_view>
 
 namespace pierce::cli {
 
@@ -15,9 +14,10 @@ inline std::string csv_field(const std::string& s) {
   return q + "\"";
 }
 
-// A double that reads back to the same value; NaN is written as `nan_text`.
-inline std::string exact_number(double v, std::string_view nan_text) {
-  if (std::isnan(v)) return std::string(nan_text);
+// A double that reads back to the same value. Every CSV of the CLI writes a missing value (NaN)
+// as `nan`, which Python, NumPy, pandas and ParaView's CSV reader all read back as NaN.
+inline std::string exact_number(double v) {
+  if (std::isnan(v)) return "nan";
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.17g", v);
   return buf;

@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <csignal>
+#include <cstdio>
 
 namespace pierce::cli {
 
@@ -33,5 +34,10 @@ InterruptGuard::InterruptGuard() {
 InterruptGuard::~InterruptGuard() { sigaction(SIGINT, &g_previous, nullptr); }
 
 bool interrupted() { return g_interrupted.load(std::memory_order_relaxed); }
+
+int cancelled() {
+  std::fputs("pierce: cancelled\n", stderr);
+  return kExitCancelled;
+}
 
 }  // namespace pierce::cli

@@ -17,4 +17,7 @@ bool interrupted();
 // Exit code of a command stopped by Ctrl-C (128 + SIGINT, as shells report it).
 inline constexpr int kExitCancelled = 130;
 
+// Tells the user the command stopped ("pierce: cancelled" on stderr); returns kExitCancelled.
+int cancelled();
+
 }  // namespace pierce::cli

@@ -1,4 +1,4 @@
-// `pierce`: command-line front end. Subcommands: hits (see cmd_*.cpp).
+// `pierce`: command-line front end; one cmd_*.cpp per subcommand (command.h).
 #include <iostream>
 #include <vector>
 

@@ -58,4 +58,23 @@ void ProgressBar::finish() {
   drawn_ = false;
 }
 
+bool LazyProgressBar::update(const std::string& label, std::size_t done, std::size_t total) {
+  ProgressBar* bar;
+  {
+    std::lock_guard lock(mutex_);
+    if (!bar_ || label != current_) {
+      if (bar_) bar_->finish();
+      bar_ = std::make_unique<ProgressBar>(label, total, force_);
+      current_ = label;
+    }
+    bar = bar_.get();
+  }
+  return bar->update(done);
+}
+
+void LazyProgressBar::finish() {
+  std::lock_guard lock(mutex_);
+  if (bar_) bar_->finish();
+}
+
 }  // namespace pierce::cli

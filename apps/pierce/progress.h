@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstddef>
+#include <memory>
 #include <mutex>
 #include <string>
 
@@ -30,6 +31,23 @@ class ProgressBar {
   std::mutex draw_mutex_;
   bool drawn_ = false;
   std::size_t best_ = 0;
+};
+
+// A bar for work whose size the analysis reports with its first progress call, as the analyses'
+// `(done, total)` callbacks do: started on that call (from whichever thread makes it), restarted
+// when the label changes (one bar per pass). operator() is such a callback.
+class LazyProgressBar {
+ public:
+  LazyProgressBar(std::string label, bool force) : label_(std::move(label)), force_(force) {}
+  bool operator()(std::size_t done, std::size_t total) { return update(label_, done, total); }
+  bool update(const std::string& label, std::size_t done, std::size_t total);
+  void finish();
+
+ private:
+  std::string label_, current_;
+  bool force_;
+  std::mutex mutex_;
+  std::unique_ptr<ProgressBar> bar_;
 };
 
 }  // namespace pierce::cli

@@ -127,7 +127,7 @@ TEST_F(CsgCli, ShotTableCsvAndJson) {
   while (std::getline(lines, line)) rows.push_back(line);
   ASSERT_EQ(rows.size(), 6u);  // header, a, a+b, b, gap, c
   EXPECT_EQ(rows[0].rfind("ray,kind,solids,in_x", 0), 0u);
-  EXPECT_EQ(rows[4].rfind("0,gap,b+c,1.75,0.5,0.5,3,0.5,0.5,1.25,,,,", 0), 0u) << rows[4];
+  EXPECT_EQ(rows[4].rfind("0,gap,b+c,1.75,0.5,0.5,3,0.5,0.5,1.25,nan,nan,nan,", 0), 0u) << rows[4];
 
   const Outcome json = pierce("shot boxes.obj --grid axis=x,n=2 --csg 'difference(a, b)' --format json");
   ASSERT_EQ(json.code, 0) << json.err;
