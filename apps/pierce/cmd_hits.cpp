@@ -59,7 +59,7 @@ bool trace(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays, co
            double& secs) {
   ProgressBar bar(std::string(kernel_name(kind)), rays.size(), o.progress);
   const auto t0 = std::chrono::steady_clock::now();
-  const bool done = trace_batch(accel, kind, rays, o.max_hits, out, {}, [&](std::size_t n) { return bar.update(n); });
+  const bool done = trace_batch(accel, kind, rays, o.max_hits, out, {}, [&](std::size_t n, std::size_t) { return bar.update(n); });
   secs = seconds_since(t0);
   bar.finish();
   return done && !interrupted();

@@ -1,14 +1,11 @@
 #include "pierce/kernel.h"
 
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-
-#include <atomic>
 #include <cstdio>
 #include <mutex>
 
 #include "pierce/bvh_builder.h"
 #include "pierce/error.h"
+#include "pierce/parallel_for_items.h"
 
 namespace pierce {
 
@@ -171,19 +168,11 @@ void collect_hits(HitIterator& it, const Ray& ray, std::size_t max_hits, std::ve
 
 bool trace_batch(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays, std::size_t max_hits,
                  std::vector<std::vector<Hit>>& result, const KernelOptions& opts,
-                 const std::function<bool(std::size_t)>& progress) {
+                 const analysis::Progress& progress) {
   result.assign(rays.size(), {});
   tbb::enumerable_thread_specific<HitIterator> iters([&] { return HitIterator(accel, kind, opts); });
-  std::atomic<std::size_t> done{0};
-  std::atomic<bool> cancelled{false};
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 256), [&](const auto& range) {
-    if (cancelled.load(std::memory_order_relaxed)) return;
-    HitIterator& it = iters.local();
-    for (std::size_t i = range.begin(); i != range.end(); ++i) collect_hits(it, rays[i], max_hits, result[i]);
-    const std::size_t d = done.fetch_add(range.size()) + range.size();
-    if (progress && !progress(d)) cancelled = true;
-  });
-  return !cancelled;
+  return parallel_for_items(rays.size(), 256, iters, progress,
+                            [&](HitIterator& it, std::size_t i) { collect_hits(it, rays[i], max_hits, result[i]); });
 }
 
 }  // namespace pierce

@@ -72,7 +72,7 @@ void bind_hits(pyb::module_& m) {
         PyScene::Use use(s);
         run_with_progress(progress, cancel, rays.size(), [&](ProgressState& st) {
           const Accel& accel = s.accel();
-          trace_batch(accel, kind, rays, max_hits, hits, opts, [&](std::size_t done) { return st.report(done); });
+          trace_batch(accel, kind, rays, max_hits, hits, opts, [&](std::size_t done, std::size_t) { return st.report(done); });
         });
 
         std::size_t total = 0;

@@ -133,7 +133,7 @@ TEST(Resume, BatchEqualsSerialAndIsDeterministic) {
       for (const Ray& r : f.rays) serial.push_back(kernel_hits(it, r, max_hits));
       std::atomic<std::size_t> last_done{0};
       std::vector<std::vector<Hit>> batch, again;
-      ASSERT_TRUE(trace_batch(f.world->accel, k, f.rays, max_hits, batch, {}, [&](std::size_t done) {
+      ASSERT_TRUE(trace_batch(f.world->accel, k, f.rays, max_hits, batch, {}, [&](std::size_t done, std::size_t) {
         std::size_t prev = last_done.load();
         while (done > prev && !last_done.compare_exchange_weak(prev, done)) {
         }
@@ -162,7 +162,7 @@ TEST(Resume, BatchCancel) {
   std::uniform_real_distribution<double> U(0.05, 0.95);
   for (int i = 0; i < 100000; ++i) rays.push_back({{U(rng), U(rng), -1.0}, {0, 0, 1}});
   std::vector<std::vector<Hit>> out;
-  EXPECT_FALSE(trace_batch(w->accel, KernelKind::filter, rays, 0, out, {}, [](std::size_t) { return false; }));
+  EXPECT_FALSE(trace_batch(w->accel, KernelKind::filter, rays, 0, out, {}, [](std::size_t, std::size_t) { return false; }));
   ASSERT_EQ(out.size(), rays.size());
   std::size_t traced = 0;
   for (std::size_t i = 0; i < out.size(); ++i)

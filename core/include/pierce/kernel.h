@@ -9,6 +9,7 @@
 #include <variant>
 #include <vector>
 
+#include "pierce/analysis/progress.h"
 #include "pierce/kernels/all_hits.h"
 #include "pierce/kernels/buffered.h"
 #include "pierce/kernels/embree_kernels.h"
@@ -146,12 +147,12 @@ class HitIterator {
 // All hits of one ray (up to max_hits, 0 = all) appended to `out`.
 void collect_hits(HitIterator& it, const Ray& ray, std::size_t max_hits, std::vector<Hit>& out);
 
-// Runs many rays on all cores (TBB). result[i] holds ray i's hits, identical whatever the
-// thread count. `progress(done)` is called from worker threads with the number of rays
-// finished so far; returning false cancels (remaining rays keep empty results) and the
-// function returns false.
+// Runs many rays on all cores (parallel_for_items). result[i] holds ray i's hits, identical
+// whatever the thread count. `progress(done, total)` is called from worker threads with the
+// number of rays finished so far; returning false cancels (remaining rays keep empty results)
+// and the function returns false.
 bool trace_batch(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays, std::size_t max_hits,
                  std::vector<std::vector<Hit>>& result, const KernelOptions& opts = {},
-                 const std::function<bool(std::size_t)>& progress = {});
+                 const analysis::Progress& progress = {});
 
 }  // namespace pierce

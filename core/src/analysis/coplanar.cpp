@@ -1,10 +1,6 @@
 #include "pierce/analysis/coplanar.h"
 
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -14,6 +10,7 @@
 #include "pierce/analysis/exact_predicates.h"
 #include "pierce/analysis/polygon2d.h"
 #include "pierce/bvh_builder.h"
+#include "pierce/parallel_for_items.h"
 
 namespace pierce::analysis {
 
@@ -108,38 +105,30 @@ CoplanarReport find_coplanar_overlaps(const Scene& scene, const CoplanarOptions&
     std::vector<std::uint32_t> stack;
   };
   tbb::enumerable_thread_specific<Local> locals;
-  std::atomic<std::size_t> done{0};
-  std::atomic<bool> cancelled{false};
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, total, 256), [&](const auto& range) {
-    if (cancelled.load(std::memory_order_relaxed)) return;
-    Local& L = locals.local();
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const Triangle<double>& ta = bvh.tris[i];
-      const TriGeom a = tri_geom(ta);
-      if (a.n == Vec3d{}) continue;
-      BBoxd box;
-      box.extend(ta.v0), box.extend(ta.v1), box.extend(ta.v2);
-      box.lo = box.lo - Vec3d{opts.tolerance, opts.tolerance, opts.tolerance};
-      box.hi = box.hi + Vec3d{opts.tolerance, opts.tolerance, opts.tolerance};
-      for_each_overlapping(bvh, box, L.stack, [&](const Triangle<double>& tb) {
-        if (!key_less(ta, tb)) return;
-        const TriGeom b = tri_geom(tb);
-        if (b.n == Vec3d{}) return;
-        // Cheap rejection: far from each other's planes (with slack for rounding).
-        const double slack = opts.tolerance + 1e-9 * (max_abs(ta.v0) + max_abs(tb.v0));
-        if (max_plane_distance(a, b) > slack || max_plane_distance(b, a) > slack) return;
-        CoplanarPair p{ta.geom, ta.prim, tb.geom, tb.prim, 0, {}, false, dot(a.n, b.n) > 0};
-        p.exact = exactly_coplanar_overlap(a, b);
-        if (!p.exact && opts.tolerance == 0) return;
-        p.area = overlap_area(a, b, p.centroid);
-        if (!p.exact && !(p.area > opts.min_area_rel * std::min(a.area, b.area))) return;
-        L.pairs.push_back(p);
-      });
-    }
-    const std::size_t d = done.fetch_add(range.size()) + range.size();
-    if (progress && !progress(d, total)) cancelled = true;
+  const bool completed = parallel_for_items(total, 256, locals, progress, [&](Local& L, std::size_t i) {
+    const Triangle<double>& ta = bvh.tris[i];
+    const TriGeom a = tri_geom(ta);
+    if (a.n == Vec3d{}) return;
+    BBoxd box;
+    box.extend(ta.v0), box.extend(ta.v1), box.extend(ta.v2);
+    box.lo = box.lo - Vec3d{opts.tolerance, opts.tolerance, opts.tolerance};
+    box.hi = box.hi + Vec3d{opts.tolerance, opts.tolerance, opts.tolerance};
+    for_each_overlapping(bvh, box, L.stack, [&](const Triangle<double>& tb) {
+      if (!key_less(ta, tb)) return;
+      const TriGeom b = tri_geom(tb);
+      if (b.n == Vec3d{}) return;
+      // Cheap rejection: far from each other's planes (with slack for rounding).
+      const double slack = opts.tolerance + 1e-9 * (max_abs(ta.v0) + max_abs(tb.v0));
+      if (max_plane_distance(a, b) > slack || max_plane_distance(b, a) > slack) return;
+      CoplanarPair p{ta.geom, ta.prim, tb.geom, tb.prim, 0, {}, false, dot(a.n, b.n) > 0};
+      p.exact = exactly_coplanar_overlap(a, b);
+      if (!p.exact && opts.tolerance == 0) return;
+      p.area = overlap_area(a, b, p.centroid);
+      if (!p.exact && !(p.area > opts.min_area_rel * std::min(a.area, b.area))) return;
+      L.pairs.push_back(p);
+    });
   });
-  if (cancelled) {
+  if (!completed) {
     rep.completed = false;
     return rep;
   }

@@ -1,16 +1,13 @@
 #include "pierce/analysis/effects.h"
 
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
 #include "pierce/analysis/thickness.h"
+#include "pierce/parallel_for_items.h"
 
 namespace pierce::analysis {
 
@@ -72,6 +69,7 @@ struct Worker {
   std::optional<CsgEvaluator> csg;
   std::vector<CsgInterval> csg_out;
   EffectsStats stats;
+  RayLists no_lists;  // handed to rays when no effect keeps lists: never filled
 
   Worker(const Accel& accel, const EffectsConfig& cfg)
       : it(accel, cfg.kernel, KernelOptions{HitOrder{TieOrder::leave_before_enter}}),
@@ -499,24 +497,13 @@ EffectsResult run_effects(const Accel& accel, const std::vector<Ray>& rays, cons
   const SolidProps props(cfg, scene.geometries().size());
   const bool lists = cfg.on(Effect::overlaps) || cfg.on(Effect::classification);
   std::vector<RayLists> per_ray(lists ? rays.size() : 0);
-  RayLists no_lists;
   tbb::enumerable_thread_specific<Worker> workers([&] { return Worker(accel, cfg); });
-  std::atomic<std::size_t> done{0};
-  std::atomic<bool> cancelled{false};
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 64), [&](const auto& range) {
-    if (cancelled.load(std::memory_order_relaxed)) return;
-    Worker& w = workers.local();
-    RayLists scratch;
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const bool timed = cfg.timing_stride > 0 && i % std::size_t(cfg.timing_stride) == 0;
-      RayWalk walk(cfg, props, scene, w, rays[i], std::uint32_t(i), timed, res, lists ? per_ray[i] : scratch);
-      walk.run();
-      ++w.stats.rays;
-    }
-    const std::size_t d = done.fetch_add(range.size()) + range.size();
-    if (progress && !progress(d, rays.size())) cancelled = true;
+  res.completed = parallel_for_items(rays.size(), 64, workers, progress, [&](Worker& w, std::size_t i) {
+    const bool timed = cfg.timing_stride > 0 && i % std::size_t(cfg.timing_stride) == 0;
+    RayWalk walk(cfg, props, scene, w, rays[i], std::uint32_t(i), timed, res, lists ? per_ray[i] : w.no_lists);
+    walk.run();
+    ++w.stats.rays;
   });
-  res.completed = !cancelled;
 
   EffectsStats& s = res.stats;
   for (const Worker& w : workers) {

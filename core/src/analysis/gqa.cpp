@@ -1,13 +1,13 @@
 #include "pierce/analysis/gqa.h"
 
 #include "pierce/analysis/thickness.h"
+#include "pierce/parallel_for_items.h"
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_reduce.h>
 #include <tbb/partitioner.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -253,8 +253,9 @@ PassResult run_pass(const Accel& accel, const GqaOptions& o, int n, std::size_t 
   const std::size_t per_axis = std::size_t(n) * std::size_t(n);
   const double tie = tie_distance(accel.scene(), o.tie_tolerance_rel);
   PassResult res;
-  std::atomic<std::size_t> done{0};
-  std::atomic<bool> cancelled{false};
+  // A reduction (deterministic sums), not parallel_for_items; progress and cancellation the same way.
+  const analysis::Progress pass_progress = [&](std::size_t d, std::size_t t) { return !progress || progress(n, d, t); };
+  ProgressTracker tracker(3 * per_axis, pass_progress);
   for (int axis = 0; axis < 3; ++axis) {
     Grid g;
     g.axis = axis;
@@ -274,7 +275,7 @@ PassResult run_pass(const Accel& accel, const GqaOptions& o, int n, std::size_t 
         tbb::blocked_range<std::size_t>(0, std::size_t(n) * pairs_per_row, std::max<std::size_t>(32, pairs_per_row)),
         AxisAcc(items),
         [&](const tbb::blocked_range<std::size_t>& r, AxisAcc acc) {
-          if (cancelled.load(std::memory_order_relaxed)) return acc;
+          if (tracker.stopped()) return acc;
           Worker& w = workers.local();
           Vec3d centre;
           std::size_t rays = 0;
@@ -288,8 +289,7 @@ PassResult run_pass(const Accel& accel, const GqaOptions& o, int n, std::size_t 
             if (cells == 2) add_pair_sq(w.lengths[0], w.lengths[1], acc.pair_sq);
             rays += cells;
           }
-          const std::size_t d = done.fetch_add(rays) + rays;
-          if (progress && !progress(n, d, 3 * per_axis)) cancelled = true;
+          tracker.add(rays);
           return acc;
         },
         [](AxisAcc a, const AxisAcc& c) {
@@ -297,9 +297,9 @@ PassResult run_pass(const Accel& accel, const GqaOptions& o, int n, std::size_t 
           return a;
         },
         tbb::simple_partitioner());
-    if (cancelled) break;
+    if (tracker.stopped()) break;
   }
-  res.completed = !cancelled;
+  res.completed = !tracker.stopped();
   return res;
 }
 

@@ -1,8 +1,5 @@
 #include "pierce/analysis/ray_overlaps.h"
 
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -11,6 +8,7 @@
 #include <tuple>
 
 #include "pierce/analysis/thickness.h"
+#include "pierce/parallel_for_items.h"
 
 namespace pierce::analysis {
 
@@ -115,10 +113,11 @@ RayOverlapReport analyse_ray_overlaps(const Accel& accel, const std::vector<Ray>
 
   KernelOptions kopts;
   kopts.order.tie = TieOrder::leave_before_enter;
-  tbb::enumerable_thread_specific<HitIterator> iters([&] { return HitIterator(accel, opts.kernel, kopts); });
-  tbb::enumerable_thread_specific<Local> locals;
-  std::atomic<std::size_t> done{0};
-  std::atomic<bool> cancelled{false};
+  struct Worker {
+    HitIterator it;
+    Local local;
+  };
+  tbb::enumerable_thread_specific<Worker> workers([&] { return Worker{HitIterator(accel, opts.kernel, kopts), {}}; });
 
   auto process = [&](Local& L, std::uint32_t ray_index, const Ray& ray) {
     const auto& hits = L.hits;
@@ -209,25 +208,19 @@ RayOverlapReport analyse_ray_overlaps(const Accel& accel, const std::vector<Ray>
     L.ending_inside += inside;
   };
 
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 64), [&](const auto& range) {
-    if (cancelled.load(std::memory_order_relaxed)) return;
-    HitIterator& it = iters.local();
-    Local& L = locals.local();
-    for (std::size_t r = range.begin(); r != range.end(); ++r) {
-      L.hits.clear();
-      collect_hits(it, rays[r], 0, L.hits);
-      process(L, std::uint32_t(r), rays[r]);
-    }
-    const std::size_t d = done.fetch_add(range.size()) + range.size();
-    if (progress && !progress(d, rays.size())) cancelled = true;
+  const bool completed = parallel_for_items(rays.size(), 64, workers, progress, [&](Worker& w, std::size_t r) {
+    w.local.hits.clear();
+    collect_hits(w.it, rays[r], 0, w.local.hits);
+    process(w.local, std::uint32_t(r), rays[r]);
   });
-  if (cancelled) {
+  if (!completed) {
     rep.completed = false;
     return rep;
   }
 
   std::map<std::pair<std::uint32_t, std::uint32_t>, ContactAcc> contacts;
-  for (Local& L : locals) {
+  for (Worker& w : workers) {
+    Local& L = w.local;
     rep.coplanar.rays += L.stats.rays;
     rep.coplanar.rays_hitting += L.stats.rays_hitting;
     rep.coplanar.rays_equal_t += L.stats.rays_equal_t;

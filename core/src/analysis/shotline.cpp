@@ -1,12 +1,9 @@
 #include "pierce/analysis/shotline.h"
 
 #include "pierce/analysis/thickness.h"
-
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
+#include "pierce/parallel_for_items.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -132,17 +129,9 @@ ShotResult shoot(const Accel& accel, const std::vector<Ray>& rays, const ShotOpt
   result.rays = rays.size();
   std::vector<std::vector<ShotRow>> per_ray(rays.size());
   tbb::enumerable_thread_specific<ShotWorker> workers([&] { return ShotWorker(accel, opts); });
-  std::atomic<std::size_t> done{0};
-  std::atomic<bool> cancelled{false};
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 64), [&](const auto& range) {
-    if (cancelled.load(std::memory_order_relaxed)) return;
-    ShotWorker& w = workers.local();
-    for (std::size_t i = range.begin(); i != range.end(); ++i)
-      shoot_one(w, accel, opts, std::uint32_t(i), rays[i], per_ray[i]);
-    const std::size_t d = done.fetch_add(range.size()) + range.size();
-    if (progress && !progress(d, rays.size())) cancelled = true;
+  result.completed = parallel_for_items(rays.size(), 64, workers, progress, [&](ShotWorker& w, std::size_t i) {
+    shoot_one(w, accel, opts, std::uint32_t(i), rays[i], per_ray[i]);
   });
-  result.completed = !cancelled;
   for (const ShotWorker& w : workers) {
     result.unmatched_leaves += w.unmatched;
     result.unclosed += w.unclosed;

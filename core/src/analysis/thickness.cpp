@@ -1,10 +1,6 @@
 #include "pierce/analysis/thickness.h"
 
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -13,6 +9,7 @@
 #include "pierce/analysis/bvh_query.h"
 #include "pierce/analysis/mesh_topology.h"
 #include "pierce/bvh_builder.h"
+#include "pierce/parallel_for_items.h"
 
 namespace pierce::analysis {
 
@@ -282,9 +279,6 @@ ThicknessResult compute_thickness(const Accel& accel, const ThicknessOptions& op
     std::vector<std::pair<double, double>> lens;
   };
   tbb::enumerable_thread_specific<Worker> workers([&] { return Worker{HitIterator(accel, opts.kernel, kopts), {}, {}}; });
-  std::atomic<std::size_t> done{0};
-  std::atomic<bool> cancelled{false};
-  const std::size_t total = set.samples.size();
 
   auto measure = [&](Worker& w, const Sample& s) -> double {
     const double ray_t =
@@ -333,19 +327,13 @@ ThicknessResult compute_thickness(const Accel& accel, const ThicknessOptions& op
     return kNaN;
   };
 
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, total, 64), [&](const auto& range) {
-    if (cancelled.load(std::memory_order_relaxed)) return;
-    Worker& w = workers.local();
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const Sample& s = set.samples[i];
-      const double t = measure(w, s);
-      res.thickness[s.out_index] = t;
-      res.status[s.out_index] = std::isnan(t) ? ThicknessStatus::no_exit : ThicknessStatus::ok;
-    }
-    const std::size_t d = done.fetch_add(range.size()) + range.size();
-    if (progress && !progress(d, total)) cancelled = true;
+  const bool completed = parallel_for_items(set.samples.size(), 64, workers, progress, [&](Worker& w, std::size_t i) {
+    const Sample& s = set.samples[i];
+    const double t = measure(w, s);
+    res.thickness[s.out_index] = t;
+    res.status[s.out_index] = std::isnan(t) ? ThicknessStatus::no_exit : ThicknessStatus::ok;
   });
-  if (cancelled) {
+  if (!completed) {
     res.completed = false;
     return res;
   }

@@ -2,17 +2,15 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
-#include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 
 #include "pierce/error.h"
 #include "pierce/io/image_writer.h"
+#include "pierce/parallel_for_items.h"
 
 namespace pierce {
 
@@ -196,24 +194,6 @@ FalseColourImage blank_image(const PictureFrame& fr) {
   return img;
 }
 
-// Calls paint_row(y, canvas) for every row of the view in parallel, with progress per row; false
-// if cancelled.
-template <class PaintRow>
-bool paint_rows(const PictureFrame& fr, Canvas& canvas, const analysis::Progress& progress, PaintRow paint_row) {
-  std::atomic<std::size_t> rows_done{0};
-  std::atomic<bool> cancel{false};
-  tbb::parallel_for(tbb::blocked_range<int>(0, fr.height, 4), [&](const tbb::blocked_range<int>& rows) {
-    if (cancel.load(std::memory_order_relaxed)) return;
-    for (int y = rows.begin(); y != rows.end(); ++y) {
-      paint_row(y, canvas);
-      const std::size_t done = rows_done.fetch_add(1) + 1;
-      if (progress && !progress(done, std::size_t(fr.height))) cancel = true;
-      if (cancel.load(std::memory_order_relaxed)) break;
-    }
-  });
-  return !cancel;
-}
-
 void draw_legend(const PictureFrame& fr, Canvas& canvas, ColourMap map, double lo, double hi) {
   if (!fr.legend) return;
   const int g = fr.glyph_scale;
@@ -266,28 +246,31 @@ FalseColourImage render_false_colour(const Accel& accel, const ElementField& fie
   img.range_max = hi;
   auto scaled = [&](double v) { return hi > lo ? (v - lo) / (hi - lo) : 0.5; };
 
-  std::atomic<std::size_t> hit_count{0};
-  tbb::enumerable_thread_specific<HitIterator> iters([&] { return HitIterator(accel, opts.kernel); });
-  Canvas canvas{img.width, img.height, img.rgb};
-  img.completed = paint_rows(fr, canvas, progress, [&](int y, Canvas& c) {
-    HitIterator& it = iters.local();
+  struct Worker {
+    HitIterator it;
     std::size_t hits = 0;
+  };
+  tbb::enumerable_thread_specific<Worker> workers([&] { return Worker{HitIterator(accel, opts.kernel)}; });
+  Canvas canvas{img.width, img.height, img.rgb};
+  // One item per row of the picture.
+  img.completed = parallel_for_items(std::size_t(fr.height), 4, workers, progress, [&](Worker& w, std::size_t row) {
+    const int y = int(row);
+    HitIterator& it = w.it;
     for (int x = 0; x < fr.view_width; ++x) {
       it.begin(fr.ray(x, y), 1);
       Hit h;
       if (!it.next(h)) continue;
-      ++hits;
+      ++w.hits;
       const auto [value, marked] = value_at(scene, field, h);
       const Vec3d base = marked ? kMarked : std::isnan(value) ? kNoValue : colour_of(opts.map, scaled(value));
       const Vec3d n{h.ng.x, h.ng.y, h.ng.z};
       const double nl = length(n);
       // Two-sided Lambert with some ambient, so faces turned from the light stay readable.
       const double lambert = nl > 0 ? std::abs(dot(n, fr.light)) / nl : 1.0;
-      c.set(x, y, base * (0.3 + 0.7 * lambert));
+      canvas.set(x, y, base * (0.3 + 0.7 * lambert));
     }
-    hit_count += hits;
   });
-  img.pixels_hit = hit_count;
+  for (const Worker& w : workers) img.pixels_hit += w.hits;
   draw_legend(fr, canvas, opts.map, lo, hi);
   return img;
 }
@@ -312,13 +295,17 @@ FalseColourImage render_cost_heatmap(const Accel& accel, KernelKind kernel, std:
   std::vector<std::uint64_t> cost(std::size_t(fr.view_width) * std::size_t(fr.height), 0);
   KernelOptions ko;
   ko.count = true;
-  tbb::enumerable_thread_specific<HitIterator> iters([&] { return HitIterator(accel, kernel, ko); });
-  tbb::enumerable_thread_specific<std::vector<Hit>> buffers;
+  struct Worker {
+    HitIterator it;
+    std::vector<Hit> hits;
+  };
+  tbb::enumerable_thread_specific<Worker> workers([&] { return Worker{HitIterator(accel, kernel, ko), {}}; });
   FalseColourImage img = blank_image(fr);
   Canvas canvas{img.width, img.height, img.rgb};
-  const bool completed = paint_rows(fr, canvas, progress, [&](int y, Canvas&) {
-    HitIterator& it = iters.local();
-    std::vector<Hit>& hits = buffers.local();
+  const bool completed = parallel_for_items(std::size_t(fr.height), 4, workers, progress, [&](Worker& w, std::size_t row) {
+    const int y = int(row);
+    HitIterator& it = w.it;
+    std::vector<Hit>& hits = w.hits;
     for (int x = 0; x < fr.view_width; ++x) {
       const Counters before = it.counters();
       hits.clear();
