@@ -70,9 +70,10 @@ set(CPACK_RESOURCE_FILE_LICENSE ${PROJECT_SOURCE_DIR}/LICENSE)
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_DEB_COMPONENT_INSTALL ON)
 set(CPACK_COMPONENTS_GROUPING ALL_COMPONENTS_IN_ONE)
-set(CPACK_COMPONENTS_ALL pierce python paraview freecad)
+set(CPACK_COMPONENTS_ALL pierce freecad)
 if(PIERCE_BUILD_VTK)
-  list(APPEND CPACK_COMPONENTS_ALL runtime)  # vtk_module_build's shared libraries
+  # vtk_module_build's shared libraries, the pierce_vtk modules, the plugin and paraview.conf
+  list(APPEND CPACK_COMPONENTS_ALL runtime python paraview)
 endif()
 set(CPACK_DEBIAN_PACKAGE_NAME pierce)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
