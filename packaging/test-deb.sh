@@ -141,8 +141,9 @@ run pvbatch pv_installed.py "$LIBDIR/paraview-5.11/plugins" "$project_version" "
 step "ParaView GUI lists the plugin"
 run env PIERCE_PV_PLUGIN_LIST="$work/run/pv_plugins.txt" timeout 300 xvfb-run -a -s "-screen 0 1024x768x24 -noreset" \
   paraview --script="$work/run/pv_gui_plugins.py" --exit >pv_gui.log 2>&1 || { cat pv_gui.log; fail "paraview GUI run failed"; }
-grep -q "^PierceParaView	$LIBDIR/paraview-5.11/plugins/PierceParaView/PierceParaView.so	" pv_plugins.txt ||
-  { cat pv_plugins.txt; fail "the ParaView GUI does not list PierceParaView"; }
+pv_file=$(awk -F'\t' '$1 == "PierceParaView" { print $2 }' pv_plugins.txt)  # name, file, loaded
+[ -n "$pv_file" ] && [ "$(readlink -f "$pv_file")" = "$LIBDIR/paraview-5.11/plugins/PierceParaView/PierceParaView.so" ] ||
+  { cat pv_plugins.txt; fail "the ParaView GUI does not list the installed PierceParaView"; }
 
 step "FreeCAD (freecadcmd)"
 run env PIERCE_EXPECT_MOD=/usr/share/freecad/Mod/Pierce PIERCE_EXPECT_PYDIR=$PYDIR \
