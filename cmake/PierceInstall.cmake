@@ -81,8 +81,8 @@ set(CPACK_DEBIAN_PACKAGE_RELEASE 1)
 set(CPACK_DEBIAN_PACKAGE_MAINTAINER "${PIERCE_MAINTAINER_NAME} <${PIERCE_MAINTAINER_EMAIL}>")
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_PRIORITY optional)
-set(CPACK_DEBIAN_PACKAGE_DESCRIPTION "${PIERCE_SUMMARY}
-Pierce returns every surface a ray crosses, in order, none missed and none twice,
+# (CPack puts CPACK_PACKAGE_DESCRIPTION_SUMMARY on the first line, then this.)
+set(CPACK_DEBIAN_PACKAGE_DESCRIPTION "Pierce returns every surface a ray crosses, in order, none missed and none twice,
 also where parts touch along a plane, where faces are duplicated, and where rays
 pass exactly through edges and vertices.
 .

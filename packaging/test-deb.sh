@@ -155,9 +155,12 @@ run env PIERCE_EXPECT_MOD=/usr/share/freecad/Mod/Pierce timeout 300 \
   { cat fc_gui.log; fail "FreeCAD GUI checks"; }
 grep -q "freecad GUI checks: 0 failures" fc_gui.log || { cat fc_gui.log; fail "FreeCAD GUI checks"; }
 
-step "apt-get purge pierce"
+step "apt-get remove pierce"
 cd "$REPO"
-$SUDO apt-get purge -y -qq pierce >"$work/apt-purge.log" 2>&1 || { cat "$work/apt-purge.log" >&2; fail "apt-get purge failed"; }
+$SUDO apt-get remove -y -qq pierce >"$work/apt-remove.log" 2>&1 || { cat "$work/apt-remove.log" >&2; fail "apt-get remove failed"; }
+# The package has no conffiles, so remove leaves nothing for purge (dpkg forgets it entirely).
+status=$(dpkg-query -W -f='${db:Status-Abbrev}' pierce 2>/dev/null || true)
+[ -z "$status" ] || [ "${status:0:2}" = "un" ] || fail "after apt-get remove, dpkg still has pierce as '$status'"
 installed=0
 left=()
 while read -r f; do
@@ -168,4 +171,4 @@ while read -r f; do
   fi
 done <"$work/files.txt"
 [ ${#left[@]} -eq 0 ] || fail "left after purge: ${left[*]}"
-step "all checks passed; the package is removed"
+step "all checks passed; the package is removed, nothing of it is left"
