@@ -97,7 +97,9 @@ done <"$work/files.txt"
 step "CLI"
 [ "$(run which pierce)" = /usr/bin/pierce ] || fail "pierce on PATH is $(run which pierce)"
 [ "$(run pierce --version)" = "pierce $project_version" ] || fail "pierce --version says '$(run pierce --version)'"
-run ldd /usr/bin/pierce | grep -q "libpierce.so.* => $LIBDIR/libpierce.so" || fail "pierce does not load $LIBDIR/libpierce.so"
+lib=$(run ldd /usr/bin/pierce | awk '$1 ~ /^libpierce\.so/ { print $3 }')   # /lib is /usr/lib (merged /usr)
+[ -n "$lib" ] && [ "$(readlink -f "$lib")" = "$(readlink -f "$LIBDIR/$(basename "$lib")")" ] &&
+  grep -qx "$LIBDIR/$(basename "$lib")" "$work/files.txt" || fail "pierce loads '$lib', not the installed libpierce"
 run pierce hits "$SAMPLES/plates.obj" --rays grid:axis=z,n=8 --kernel queue --out hits.csv
 rows=$(grep -vc '^ray,' hits.csv)
 [ "$rows" -eq $((64 * 20)) ] || fail "pierce hits on plates.obj: $rows hits, expected 1280 (64 rays x 20 surfaces)"
@@ -150,10 +152,10 @@ run env PIERCE_EXPECT_MOD=/usr/share/freecad/Mod/Pierce PIERCE_EXPECT_PYDIR=$PYD
   timeout 300 freecadcmd fc_installed.py || fail "freecadcmd checks"
 
 step "FreeCAD GUI lists the workbench"
-run env PIERCE_EXPECT_MOD=/usr/share/freecad/Mod/Pierce timeout 300 \
+run env PIERCE_EXPECT_MOD=/usr/share/freecad/Mod/Pierce PIERCE_TEST_REPORT="$work/run/fc_gui.txt" timeout 300 \
   xvfb-run -a -s "-screen 0 1280x1024x24" freecad fc_gui_installed.py >fc_gui.log 2>&1 ||
-  { cat fc_gui.log; fail "FreeCAD GUI checks"; }
-grep -q "freecad GUI checks: 0 failures" fc_gui.log || { cat fc_gui.log; fail "FreeCAD GUI checks"; }
+  { cat fc_gui.log fc_gui.txt; fail "FreeCAD GUI checks"; }
+grep -qx "freecad GUI checks: 0 failures" fc_gui.txt || { cat fc_gui.log fc_gui.txt; fail "FreeCAD GUI checks"; }
 
 step "apt-get remove pierce"
 cd "$REPO"

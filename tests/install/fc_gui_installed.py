@@ -1,8 +1,8 @@
 """FreeCAD GUI check (under xvfb-run) of the installed workbench: FreeCAD lists the Pierce
 workbench, activates it and registers its commands. Exits with the result (os._exit: the GUI
-would otherwise keep running).
+would otherwise keep running) and writes a report to $PIERCE_TEST_REPORT.
 
-    QTWEBENGINE_DISABLE_SANDBOX=1 xvfb-run -a -s "-screen 0 1280x1024x24" freecad fc_gui_installed.py
+    PIERCE_TEST_REPORT=report.txt QTWEBENGINE_DISABLE_SANDBOX=1 xvfb-run -a -s "-screen 0 1280x1024x24" freecad fc_gui_installed.py
 """
 import os
 import sys
@@ -31,8 +31,12 @@ def main():
     except BaseException:  # noqa: B902
         traceback.print_exc()
         failures.append("exception")
-    print("freecad GUI checks: %d failures" % len(failures), flush=True)
+    summary = "freecad GUI checks: %d failures" % len(failures)
+    print(summary, flush=True)
     sys.stdout.flush()
+    # The GUI may redirect stdout to its report view: the caller reads this file.
+    with open(os.environ["PIERCE_TEST_REPORT"], "w") as f:
+        f.write("\n".join(["FAIL " + what for what in failures] + [summary]) + "\n")
     os._exit(1 if failures else 0)
 
 
