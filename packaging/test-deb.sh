@@ -160,17 +160,23 @@ grep -qx "freecad GUI checks: 0 failures" fc_gui.txt || { cat fc_gui.log fc_gui.
 step "apt-get remove pierce"
 cd "$REPO"
 $SUDO apt-get remove -y -qq pierce >"$work/apt-remove.log" 2>&1 || { cat "$work/apt-remove.log" >&2; fail "apt-get remove failed"; }
-# The package has no conffiles, so remove leaves nothing for purge (dpkg forgets it entirely).
-status=$(dpkg-query -W -f='${db:Status-Abbrev}' pierce 2>/dev/null || true)
-[ -z "$status" ] || [ "${status:0:2}" = "un" ] || fail "after apt-get remove, dpkg still has pierce as '$status'"
+check_nothing_left() {
+  local left=() f
+  while read -r f; do
+    if [ -e "$f" ] || [ -L "$f" ]; then
+      # Directories shared with other packages (/usr/bin, ParaView's plugin directory, ...) stay.
+      if [ -d "$f" ] && [ ! -L "$f" ] && dpkg-query -S "$f" >/dev/null 2>&1; then continue; fi
+      left+=("$f")
+    fi
+  done <"$work/files.txt"
+  [ ${#left[@]} -eq 0 ] || fail "left after apt-get $1: ${left[*]}"
+}
+check_nothing_left remove
+# The package has no conffiles; dpkg only keeps its record (state rc, for postrm purge) until purged.
+step "apt-get purge pierce"
+$SUDO apt-get purge -y -qq pierce >"$work/apt-purge.log" 2>&1 || { cat "$work/apt-purge.log" >&2; fail "apt-get purge failed"; }
 installed=0
-left=()
-while read -r f; do
-  if [ -e "$f" ] || [ -L "$f" ]; then
-    # Directories shared with other packages (/usr/bin, ParaView's plugin directory, ...) stay.
-    if [ -d "$f" ] && [ ! -L "$f" ] && dpkg-query -S "$f" >/dev/null 2>&1; then continue; fi
-    left+=("$f")
-  fi
-done <"$work/files.txt"
-[ ${#left[@]} -eq 0 ] || fail "left after purge: ${left[*]}"
+status=$(dpkg-query -W -f='${db:Status-Abbrev}' pierce 2>/dev/null || true)
+[ -z "$status" ] || [ "${status:0:2}" = "un" ] || fail "after apt-get purge, dpkg still has pierce as '$status'"
+check_nothing_left purge
 step "all checks passed; the package is removed, nothing of it is left"
