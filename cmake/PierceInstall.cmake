@@ -47,7 +47,7 @@ endif()
 install(DIRECTORY freecad_addon/ DESTINATION ${CMAKE_INSTALL_DATAROOTDIR}/freecad/Mod/Pierce COMPONENT freecad
   PATTERN __pycache__ EXCLUDE
   PATTERN pierce_path.txt EXCLUDE)
-install(FILES LICENSE DESTINATION ${CMAKE_INSTALL_DATAROOTDIR}/freecad/Mod/Pierce COMPONENT freecad)  # package.xml names it
+install(FILES LICENSE DESTINATION ${CMAKE_INSTALL_DATAROOTDIR}/freecad/Mod/Pierce COMPONENT freecad)
 
 # --- Documentation, samples, the consumer example ------------------------------------------
 install(FILES README.md LICENSE DESTINATION ${PIERCE_INSTALL_DOCDIR} COMPONENT pierce)
