@@ -14,6 +14,7 @@ PACKAGES=(
   mpi-default-dev libnetcdf-dev libgl-dev libpng-dev libtheora-dev libtiff-dev libx11-dev zlib1g-dev
   libdouble-conversion-dev libutfcpp-dev libboost-dev
   freecad pybind11-dev python3-dev python3-numpy xvfb xauth
+  help2man man-db
   libgmp-dev clang libclang-rt-14-dev
   python3-matplotlib
 )

@@ -6,6 +6,12 @@ bash packaging/install-deps.sh
 bash packaging/build.sh
 ctest --test-dir build --output-on-failure -j "$(nproc)" --timeout 900
 
+# The Debian package, built from that tree, installed with apt, checked from outside the checkout
+# and purged again (packaging/test-deb.sh). PIERCE_SKIP_DEB=1 skips this step.
+if [ "${PIERCE_SKIP_DEB:-0}" != 1 ]; then
+  bash packaging/test-deb.sh
+fi
+
 # The same suite under ASan + UBSan (CMakePresets.json preset `asan`, build-asan/; any report
 # fails the test). Tests that run inside Python/FreeCAD interpreters are left to the run above:
 # those programs cannot load sanitized libraries. PIERCE_SKIP_ASAN=1 skips this step.

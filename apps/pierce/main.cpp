@@ -4,9 +4,11 @@
 
 #include "command.h"
 #include "pierce/error.h"
+#include "pierce/version.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Pierce: exact multi-hit ray traversal"};
+  app.set_version_flag("--version", "pierce " PIERCE_VERSION_STRING, "Print the version and exit");
   app.require_subcommand(1);
   std::vector<std::pair<CLI::App*, std::function<int()>>> commands;
   for (auto reg : {pierce::cli::register_hits, pierce::cli::register_info, pierce::cli::register_thickness,

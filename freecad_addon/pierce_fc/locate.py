@@ -7,7 +7,9 @@ Looked for, in order:
   3. the FreeCAD parameter User parameter:BaseApp/Preferences/Mod/Pierce/ModulePath;
   4. a development checkout, when the add-on runs from <repo>/freecad_addon (linked install):
      <repo>/build/python, then <repo>/build-*/python, newest first;
-  5. sys.path as it is.
+  5. sys.path as it is: where the pierce Debian package installs it (/usr/lib/python3/dist-packages,
+     next to the workbench in /usr/share/freecad/Mod/Pierce), so an installed workbench needs none
+     of the above.
 """
 import glob
 import os
@@ -62,7 +64,8 @@ def import_pierce():
     except ImportError as e:
         where = ", ".join(tried) if tried else "no candidate directory"
         raise PierceUnavailable(
-            "The Pierce Python module could not be imported (%s). Build Pierce "
-            "(bash packaging/build.sh) and run packaging/install-freecad-addon.sh, or set "
-            "PIERCE_PYTHONPATH to <build>/python. Looked in: %s" % (e, where)) from e
+            "The Pierce Python module could not be imported (%s). Install the pierce package "
+            "(packaging/build-deb.sh builds it), or build Pierce (bash packaging/build.sh) and run "
+            "packaging/install-freecad-addon.sh, or set PIERCE_PYTHONPATH to <build>/python. "
+            "Looked in: %s, then sys.path" % (e, where)) from e
     return pierce
