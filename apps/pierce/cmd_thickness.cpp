@@ -210,16 +210,15 @@ int run_thickness(const ThicknessCli& o) {
   load_models(scene, o.model);
   if (interrupted()) return cancelled();
   analysis::ThicknessOptions opts;
-  opts.method = o.method == "ray" ? ThicknessMethod::ray : o.method == "cone" ? ThicknessMethod::cone : ThicknessMethod::sphere;
-  opts.per = o.per == "vertex" ? SampleAt::vertex : SampleAt::face;
+  opts.method = parse_enum_or_throw<ThicknessMethod>(o.method);
+  opts.per = parse_enum_or_throw<SampleAt>(o.per);
   opts.min_thickness = o.min_thickness;
   opts.max_distance = o.max_distance;
   opts.cone_rays = o.cone_rays;
   opts.cone_angle_deg = o.cone_angle;
   opts.kernel = *kernel;
-  opts.origin_offsets = o.origin_offsets == "on"    ? analysis::OffsetMode::on
-                        : o.origin_offsets == "off" ? analysis::OffsetMode::off
-                                                    : analysis::OffsetMode::automatic;
+  // `auto` is the library's default, which is off (see --origin-offsets' help).
+  opts.origin_offsets = o.origin_offsets == "on" ? analysis::OffsetMode::on : analysis::OffsetMode::off;
   opts.offset_set = parse_hemisphere_set(o.offset_set).value_or(HemisphereSet::center);
   opts.solids = resolve_solids(scene, o.solids);
   const Accel accel(scene);
@@ -256,10 +255,10 @@ std::function<int()> register_thickness(CLI::App& app) {
   cmd->add_option("--method", o->method,
                   "ray: along the inward normal to where the ray leaves the solid; cone: shape diameter function "
                   "over --cone-rays rays; sphere: diameter of the largest inscribed ball touching the point")
-      ->check(CLI::IsMember({"ray", "cone", "sphere"}))
+      ->check(CLI::IsMember(enum_names<ThicknessMethod>()))
       ->capture_default_str();
   cmd->add_option("--per", o->per, "Sample at every vertex or every face (triangle centroid)")
-      ->check(CLI::IsMember({"vertex", "face"}))
+      ->check(CLI::IsMember(enum_names<SampleAt>()))
       ->capture_default_str();
   cmd->add_option("--min", o->min_thickness, "Thin flag: thickness below this")->check(CLI::NonNegativeNumber);
   cmd->add_option("--max-distance", o->max_distance, "Search no farther; beyond it: no thickness (status no_exit)")

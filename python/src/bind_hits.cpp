@@ -32,11 +32,7 @@ KernelKind kernel_from_name(const std::string& name) {
   throw pyb::value_error("unknown kernel '" + name + "' (known: " + known + ")");
 }
 
-TieOrder tie_from_name(const std::string& name) {
-  if (name == "geom_prim") return TieOrder::geom_prim;
-  if (name == "leave_before_enter") return TieOrder::leave_before_enter;
-  throw pyb::value_error("unknown order '" + name + "' (known: geom_prim, leave_before_enter)");
-}
+TieOrder tie_from_name(const std::string& name) { return parse_enum_or_throw<TieOrder>(name); }
 
 void bind_hits(pyb::module_& m) {
   PYBIND11_NUMPY_DTYPE(HitRecord, ray, t, geom, prim, u, v, ng, enter);

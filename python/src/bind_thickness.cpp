@@ -18,23 +18,6 @@ namespace {
 
 using namespace pierce::analysis;
 
-ThicknessMethod method_from_name(const std::string& s) {
-  if (s == "ray") return ThicknessMethod::ray;
-  if (s == "cone") return ThicknessMethod::cone;
-  if (s == "sphere") return ThicknessMethod::sphere;
-  throw pyb::value_error("unknown thickness method '" + s + "' (known: ray, cone, sphere)");
-}
-SampleAt per_from_name(const std::string& s) {
-  if (s == "vertex") return SampleAt::vertex;
-  if (s == "face") return SampleAt::face;
-  throw pyb::value_error("unknown sampling '" + s + "' (known: vertex, face)");
-}
-ConeAggregate aggregate_from_name(const std::string& s) {
-  if (s == "shapira") return ConeAggregate::shapira;
-  if (s == "median") return ConeAggregate::median;
-  throw pyb::value_error("unknown cone aggregate '" + s + "' (known: shapira, median)");
-}
-
 }  // namespace
 
 void bind_thickness(pyb::module_& m) {
@@ -81,7 +64,7 @@ void bind_thickness(pyb::module_& m) {
   pyb::class_<ThicknessResult>(m, "ThicknessResult",
                                "One entry per sampled element, solid by solid; element = vertex or triangle "
                                "index in its geometry.")
-      .def_property_readonly("per", [](const ThicknessResult& r) { return r.per == SampleAt::vertex ? "vertex" : "face"; })
+      .def_property_readonly("per", [](const ThicknessResult& r) { return std::string(enum_name(r.per)); })
       .def_readonly("completed", &ThicknessResult::completed)
       .def_readonly("solids", &ThicknessResult::solids, "per-solid statistics (SolidThickness)")
       .def("__len__", &ThicknessResult::size)
@@ -132,13 +115,13 @@ void bind_thickness(pyb::module_& m) {
          std::optional<std::vector<double>> percentiles, int histogram_bins, const pyb::object& progress,
          CancelToken* cancel) {
         ThicknessOptions o;
-        o.method = method_from_name(method);
-        o.per = per_from_name(per);
+        o.method = parse_enum_or_throw<ThicknessMethod>(method);
+        o.per = parse_enum_or_throw<SampleAt>(per);
         o.max_distance = max_distance;
         o.min_thickness = min_thickness;
         o.cone_rays = cone_rays;
         o.cone_angle_deg = cone_angle;
-        o.cone_aggregate = aggregate_from_name(cone_aggregate);
+        o.cone_aggregate = parse_enum_or_throw<ConeAggregate>(cone_aggregate);
         o.sphere_max_iterations = sphere_max_iterations;
         o.tie_tolerance_rel = tie_tolerance_rel;
         o.kernel = kernel_from_name(kernel);

@@ -110,7 +110,3 @@ struct type_caster<pierce::Vec3d> {
   }
 };
 }  // namespace pybind11::detail
-
-namespace pierce::py {
-
-}  // namespace pierce::py

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "pierce/enum_names.h"
 #include "pierce/vec3.h"
 
 namespace pierce {
@@ -40,9 +41,13 @@ struct HitOrder {
   constexpr bool operator()(const Hit& a, const Hit& b) const { return less(a, b); }
 };
 
-// "before everything": the sentinel passed as last hit when a sequence begins.
-inline constexpr Hit kNoHitYet{-std::numeric_limits<double>::infinity(), 0, 0, 0.f, 0.f, {}, false};
-
 inline bool same_hit(const Hit& a, const Hit& b) { return a.t == b.t && a.geom == b.geom && a.prim == b.prim; }
+
+template <>
+struct EnumNames<TieOrder> {
+  static constexpr std::string_view what = "tie order";
+  static constexpr NamedValue<TieOrder> values[] = {{TieOrder::geom_prim, "geom_prim"},
+                                                    {TieOrder::leave_before_enter, "leave_before_enter"}};
+};
 
 }  // namespace pierce

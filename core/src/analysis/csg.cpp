@@ -7,7 +7,7 @@
 #include <map>
 
 #include "pierce/analysis/bvh_query.h"
-#include "pierce/analysis/thickness.h"
+#include "pierce/analysis/tie_distance.h"
 #include "pierce/error.h"
 
 namespace pierce::analysis {

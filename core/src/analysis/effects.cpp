@@ -6,7 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "pierce/analysis/thickness.h"
+#include "pierce/analysis/tie_distance.h"
 #include "pierce/parallel_for_items.h"
 
 namespace pierce::analysis {

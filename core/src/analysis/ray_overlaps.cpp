@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "pierce/analysis/thickness.h"
+#include "pierce/analysis/tie_distance.h"
 #include "pierce/parallel_for_items.h"
 
 namespace pierce::analysis {

@@ -1,6 +1,6 @@
 #include "pierce/analysis/shotline.h"
 
-#include "pierce/analysis/thickness.h"
+#include "pierce/analysis/tie_distance.h"
 #include "pierce/parallel_for_items.h"
 
 #include <algorithm>

@@ -79,19 +79,7 @@ void check_options(const Accel& accel, const ThicknessOptions& o) {
 }  // namespace
 
 bool uses_origin_offsets(const ThicknessOptions& opts) {
-  if (opts.per != SampleAt::face || opts.method == ThicknessMethod::sphere) return false;
-  switch (opts.origin_offsets) {
-    case OffsetMode::off: return false;
-    case OffsetMode::on: return true;
-    // docs/BENCHMARKS.md, "Origin offsets": building the hemispheres costs more than they save
-    // on every measured model, for ray and cone alike, so `automatic` does not use them.
-    case OffsetMode::automatic: return false;
-  }
-  return false;
-}
-
-double tie_distance(const Scene& scene, double tie_tolerance_rel) {
-  return tie_tolerance_rel * (scene.scale() + scene.bounds().max_abs_coord());
+  return opts.per == SampleAt::face && opts.method != ThicknessMethod::sphere && opts.origin_offsets == OffsetMode::on;
 }
 
 // Shapira et al. 2008, section 4.
@@ -121,24 +109,6 @@ double cone_aggregate(std::span<const std::pair<double, double>> len_angle, Cone
     return percentile_sorted(kept, 50);
   }
   return acc / wsum;
-}
-
-std::string_view method_name(ThicknessMethod m) {
-  switch (m) {
-    case ThicknessMethod::ray: return "ray";
-    case ThicknessMethod::cone: return "cone";
-    case ThicknessMethod::sphere: return "sphere";
-  }
-  return "?";
-}
-
-std::string_view status_name(ThicknessStatus s) {
-  switch (s) {
-    case ThicknessStatus::ok: return "ok";
-    case ThicknessStatus::no_exit: return "no_exit";
-    case ThicknessStatus::no_normal: return "no_normal";
-  }
-  return "?";
 }
 
 // The ray starts on the solid's surface heading inward, so it is inside (depth 1) from the

@@ -52,7 +52,7 @@ CsgExpr parse_csg(std::string_view text, const Scene& scene);
 // would read as a sliver of overlap or gap between touching solids. This drops partitions no longer
 // than `tie_t`, closes gaps no longer than `tie_t` (the later partition starts where the earlier one
 // ends) and merges adjacent partitions with equal solid sets. tie_t is in units of the ray's |dir|;
-// tie_distance() in thickness.h gives the usual length.
+// tie_distance() (tie_distance.h) gives the usual length.
 void snap_partitions(RayPartitions& parts, double tie_t);
 
 // A result interval of one ray: [t_in, t_out] with the crossings that bound it (invalid where
@@ -90,7 +90,7 @@ std::string_view point_class_name(PointClass c);
 // with the same tolerance (snap_partitions). Not thread-safe (one per thread).
 class PointClassifier {
  public:
-  // tolerance = tie_distance(scene, tolerance_rel) (thickness.h). The kernel must be exact.
+  // tolerance = tie_distance(scene, tolerance_rel) (tie_distance.h). The kernel must be exact.
   PointClassifier(const Accel& accel, const CsgExpr& expr, KernelKind kernel = KernelKind::queue,
                   double tolerance_rel = 1e-6);
   PointClass classify(Vec3d point);

@@ -40,7 +40,7 @@ struct GqaOptions {
   int max_n = 1024;         // no pass beyond this grid size
   KernelKind kernel = KernelKind::queue;  // any exact kernel gives the same result
   std::vector<CsgExpr> regions;           // CSG expressions measured like solids
-  // Partitions and gaps shorter than tie_distance(scene, tie_tolerance_rel) (thickness.h) are
+  // Partitions and gaps shorter than tie_distance(scene, tie_tolerance_rel) (tie_distance.h) are
   // float noise between touching solids and are snapped away (snap_partitions).
   double tie_tolerance_rel = 1e-6;
   double gap_min = 0;  // gaps no longer than this are not reported (absolute length)

@@ -23,7 +23,7 @@ namespace pierce::analysis {
 struct RayOverlapOptions {
   KernelKind kernel = KernelKind::queue;  // any exact kernel gives the same result
   double epsilon_rel = 1e-5;              // Gribble's epsilon, relative to the scene diagonal
-  // Crossings closer together than this (relative, see tie_distance in thickness.h) happen at
+  // Crossings closer together than this (relative, see tie_distance.h) happen at
   // the same place: a solid leaving and another entering there touch rather than overlap.
   double tie_tolerance_rel = 1e-6;
   bool keep_intervals = true;  // keep every ray's overlap interval, not only per-pair summaries

@@ -27,6 +27,8 @@
 #include "pierce/analysis/statistics.h"
 #include "pierce/kernel.h"
 #include "pierce/origin_offsets.h"
+#include "pierce/analysis/tie_distance.h"
+#include "pierce/enum_names.h"
 
 namespace pierce::analysis {
 
@@ -34,7 +36,7 @@ enum class ThicknessMethod { ray, cone, sphere };
 enum class SampleAt { vertex, face };
 enum class ConeAggregate { shapira, median };
 // Origin offsets for rays from face samples: never change a result, only the work.
-enum class OffsetMode { off, on, automatic };
+enum class OffsetMode { off, on };
 
 struct ThicknessOptions {
   ThicknessMethod method = ThicknessMethod::ray;
@@ -52,9 +54,9 @@ struct ThicknessOptions {
   KernelKind kernel = KernelKind::queue;  // any exact kernel gives the same result
   // Ray and cone rays from face samples start where they leave an empty hemisphere on their
   // triangle (origin_offsets.h; vertex samples lie on every hemisphere's rim and gain nothing).
-  // `automatic`: only where the bench shows they pay (docs/BENCHMARKS.md, "Origin offsets"):
-  // so far nowhere once the hemisphere build is counted, so it means off.
-  OffsetMode origin_offsets = OffsetMode::automatic;
+  // Off by default: building the hemispheres costs more than they save on every model measured
+  // (docs/BENCHMARKS.md, "Origin offsets").
+  OffsetMode origin_offsets = OffsetMode::off;
   HemisphereSet offset_set = HemisphereSet::center;
   std::vector<std::uint32_t> solids;      // geometries to sample (all when empty); the others
                                           // still take part as neighbours
@@ -92,16 +94,14 @@ struct ThicknessResult {
   std::size_t size() const { return thickness.size(); }
 };
 
-// Distance below which crossings count as simultaneous / as the start surface.
-double tie_distance(const Scene& scene, double tie_tolerance_rel);
 
 // Throws std::invalid_argument on bad options (negative distances, cone_rays < 1, angle outside
 // (0, 180), a non-exact kernel, an unknown solid id).
 ThicknessResult compute_thickness(const Accel& accel, const ThicknessOptions& opts = {},
                                   const Progress& progress = {});
 
-std::string_view method_name(ThicknessMethod m);
-std::string_view status_name(ThicknessStatus s);
+inline std::string_view method_name(ThicknessMethod m) { return enum_name(m); }
+inline std::string_view status_name(ThicknessStatus s) { return enum_name(s); }
 
 // Ray thickness of one sample: from `point` along the unit inward direction `dir`, the
 // distance to where the ray leaves geometry `geom` (NaN if it does not within max_distance).
@@ -119,3 +119,38 @@ double cone_aggregate(std::span<const std::pair<double, double>> length_angle, C
                       double min_angle);
 
 }  // namespace pierce::analysis
+
+// Option names, shared by the front ends (enum_names.h).
+template <>
+struct pierce::EnumNames<pierce::analysis::ThicknessMethod> {
+  static constexpr std::string_view what = "thickness method";
+  static constexpr NamedValue<analysis::ThicknessMethod> values[] = {
+      {analysis::ThicknessMethod::ray, "ray"}, {analysis::ThicknessMethod::cone, "cone"},
+      {analysis::ThicknessMethod::sphere, "sphere"}};
+};
+template <>
+struct pierce::EnumNames<pierce::analysis::SampleAt> {
+  static constexpr std::string_view what = "sampling";
+  static constexpr NamedValue<analysis::SampleAt> values[] = {{analysis::SampleAt::vertex, "vertex"},
+                                                              {analysis::SampleAt::face, "face"}};
+};
+template <>
+struct pierce::EnumNames<pierce::analysis::ConeAggregate> {
+  static constexpr std::string_view what = "cone aggregate";
+  static constexpr NamedValue<analysis::ConeAggregate> values[] = {{analysis::ConeAggregate::shapira, "shapira"},
+                                                                   {analysis::ConeAggregate::median, "median"}};
+};
+template <>
+struct pierce::EnumNames<pierce::analysis::OffsetMode> {
+  static constexpr std::string_view what = "origin offset mode";
+  static constexpr NamedValue<analysis::OffsetMode> values[] = {{analysis::OffsetMode::off, "off"},
+                                                                {analysis::OffsetMode::on, "on"}};
+};
+template <>
+struct pierce::EnumNames<pierce::analysis::ThicknessStatus> {
+  static constexpr std::string_view what = "thickness status";
+  static constexpr NamedValue<analysis::ThicknessStatus> values[] = {{analysis::ThicknessStatus::ok, "ok"},
+                                                                     {analysis::ThicknessStatus::no_exit, "no_exit"},
+                                                                     {analysis::ThicknessStatus::no_normal, "no_normal"}};
+};
+
