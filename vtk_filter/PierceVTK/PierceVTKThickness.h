@@ -1,12 +1,16 @@
 #pragma once
 // vtkPierceThickness's conversions: filter settings to ThicknessOptions, results to VTK arrays
 // on the solids' surfaces and to a per-solid statistics table.
+#include <cstdint>
+#include <vector>
+
 #include "pierce/analysis/thickness.h"
 
 class vtkTable;
 
 namespace pierce_vtk {
 
+class Distribution;
 struct Surfaces;
 
 struct ThicknessSettings {
@@ -26,7 +30,19 @@ pierce::analysis::ThicknessOptions ToThicknessOptions(const ThicknessSettings& s
 void AttachThickness(const pierce::analysis::ThicknessResult& result, Surfaces& surfaces);
 
 // One row per solid: SolidId, Name, Elements, Valid, NoExit, NoNormal, Thin, Min, Max, Mean and
-// the percentiles as P<q>.
-void WriteThicknessTable(const pierce::analysis::ThicknessResult& result, vtkTable* table);
+// the percentiles as P<q> (one column per entry of `percentiles`).
+void WriteThicknessTable(const std::vector<pierce::analysis::SolidThickness>& solids,
+                         const std::vector<double>& percentiles, vtkTable* table);
+
+// Distributed runs: sample_mask selecting this rank's samples (the points its triangles use, or
+// its triangles) in the gathered scene.
+std::vector<std::vector<std::uint8_t>> OwnSampleMask(const Surfaces& surfaces, bool per_cell);
+
+// Distributed runs, collective: the per-solid statistics of every rank's samples as attached to
+// its surfaces (AttachThickness), on rank 0 (empty elsewhere). Per vertex, points of one solid at
+// the same position count once (two ranks share the points along their cut).
+std::vector<pierce::analysis::SolidThickness> GatherThicknessStatistics(
+  const Surfaces& surfaces, bool per_cell, const pierce::analysis::ThicknessOptions& options,
+  const Distribution& distribution);
 
 }  // namespace pierce_vtk
