@@ -34,14 +34,14 @@ template <typename T>
 std::vector<T> AllGatherValues(vtkMultiProcessController* c, int size, const std::vector<T>& values,
                                std::vector<vtkIdType>* lengths_out) {
   const vtkIdType n = vtkIdType(values.size());
-  std::vector<vtkIdType> lengths(std::size_t(size)), offsets(std::size_t(size));
+  std::vector<vtkIdType> lengths(static_cast<std::size_t>(size)), offsets(static_cast<std::size_t>(size));
   c->AllGather(&n, lengths.data(), 1);
   vtkIdType total = 0;
   for (int r = 0; r < size; ++r) {
     offsets[std::size_t(r)] = total;
     total += lengths[std::size_t(r)];
   }
-  std::vector<T> all(std::size_t(total));
+  std::vector<T> all(static_cast<std::size_t>(total));
   if (total > 0) {
     T dummy{};
     c->AllGatherV(values.empty() ? &dummy : values.data(), all.data(), n, lengths.data(), offsets.data());
@@ -142,7 +142,7 @@ std::vector<char> Distribution::AllGather(const std::vector<char>& values) const
 std::vector<double> Distribution::GatherToRoot(const std::vector<double>& values) const {
   if (!this->Distributed()) return values;
   const vtkIdType n = vtkIdType(values.size());
-  std::vector<vtkIdType> lengths(std::size_t(this->Size)), offsets(std::size_t(this->Size));
+  std::vector<vtkIdType> lengths(static_cast<std::size_t>(this->Size)), offsets(static_cast<std::size_t>(this->Size));
   this->Controller->AllGather(&n, lengths.data(), 1);
   vtkIdType total = 0;
   for (int r = 0; r < this->Size; ++r) {

@@ -210,7 +210,11 @@ bool CollectSolids(vtkDataObject* input, std::vector<Solid>& solids, std::vector
   auto add = [&](vtkSmartPointer<vtkPolyData> surface, std::string name, unsigned int flat, const std::string& label) {
     if (drop_ghost_cells) surface = DropGhostCells(surface);
     if (FindNonFinitePoint(surface, label, error)) return false;
-    solids.push_back(Solid{surface, std::move(name), flat});
+    Solid solid;
+    solid.surface = surface;
+    solid.name = std::move(name);
+    solid.flat_index = flat;
+    solids.push_back(std::move(solid));
     return true;
   };
   if (auto* tree = vtkDataObjectTree::SafeDownCast(input)) {
