@@ -158,14 +158,26 @@ std::vector<double> Distribution::GatherToRoot(const std::vector<double>& values
   return all;
 }
 
+namespace {
+// The table with its own column arrays (writers may share them with other outputs).
+void DetachColumns(vtkTable* table) {
+  auto copy = vtkSmartPointer<vtkTable>::New();
+  copy->DeepCopy(table);
+  table->ShallowCopy(copy);
+}
+}  // namespace
+
 void Distribution::KeepTableOnRoot(vtkTable* table) const {
-  if (this->Distributed() && !this->IsRoot()) table->SetNumberOfRows(0);
+  if (!this->Distributed() || this->IsRoot()) return;
+  DetachColumns(table);
+  table->SetNumberOfRows(0);
 }
 
 void Distribution::GatherTableRows(vtkTable* table) const {
   if (!this->Distributed()) return;
   std::vector<vtkSmartPointer<vtkDataObject>> tables;
   this->Controller->Gather(table, tables, 0);
+  DetachColumns(table);
   if (!this->IsRoot()) {
     table->SetNumberOfRows(0);
     return;
