@@ -2,7 +2,9 @@
 `mpiexec -n 2 pvbatch --symmetric`: reader -> D3 -> Pierce filter. Every rank writes its own
 output piece (every point or cell value with its identity) and its table to OUT/rank<r>.json.
 
-    pvbatch --symmetric pv_mpi_case.py --plugin P.so --case sphere|step|plates|csg --data DIR --out OUT
+    pvbatch --symmetric pv_mpi_case.py --plugin P.so --cases sphere,step,plates,csg --data DIR --out OUT
+
+writes OUT/<case>/rank<r>.json.
 
 Cases (inputs written to DATA by `--make-inputs`, serially, before the runs):
   sphere  hollow sphere (two concentric UV spheres, wall 0.1), thickness per point and per cell
@@ -16,8 +18,7 @@ import json
 import os
 import struct
 
-from paraview.simple import (D3, LoadPlugin, OpenDataFile, PVDReader, XMLMultiBlockDataReader,
-                             XMLPartitionedPolydataReader, XMLPolyDataReader)
+from paraview.simple import D3, LoadPlugin, XMLMultiBlockDataReader, XMLPartitionedPolydataReader, XMLPolyDataReader
 from vtkmodules.vtkParallelCore import vtkMultiProcessController
 
 
@@ -192,7 +193,7 @@ def table_rows(table):
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("--plugin", required=True)
-    p.add_argument("--case", required=True, choices=["sphere", "step", "plates", "csg"])
+    p.add_argument("--cases", default="sphere,step,plates,csg")
     p.add_argument("--data", required=True)
     p.add_argument("--samples")
     p.add_argument("--out")
@@ -204,17 +205,25 @@ def main():
     LoadPlugin(args.plugin, ns=globals())
     controller = vtkMultiProcessController.GetGlobalController()
     rank = controller.GetLocalProcessId() if controller else 0
+    for case in args.cases.split(","):
+        out = os.path.join(args.out, case)
+        os.makedirs(out, exist_ok=True)
+        with open(os.path.join(out, "rank%d.json" % rank), "w") as f:
+            json.dump(run_case(case, args, rank), f)
+
+
+def run_case(case, args, rank):
     runs = []
-    if args.case == "sphere":
+    if case == "sphere":
         model = D3(Input=XMLPolyDataReader(FileName=[os.path.join(args.data, "shell.vtp")]))
         for at in ("Points", "Cells"):
             runs.append((at, PierceThickness(Input=model, SampleAt=at), ["Thickness", "ThicknessStatus", "Thin", "SolidId"],
                          at == "Cells"))
-    elif args.case == "step":
+    elif case == "step":
         model = D3(Input=PierceCADReader(FileName=os.path.join(args.samples, "plate_assembly.step")))
         runs.append(("cells", PierceThickness(Input=model, SampleAt="Cells", MinThickness=3.0),
                      ["Thickness", "ThicknessStatus", "Thin", "SolidId"], True))
-    elif args.case == "plates":
+    elif case == "plates":
         model = D3(Input=XMLMultiBlockDataReader(FileName=[os.path.join(args.data, "plates.vtm")]))
         runs.append(("overlaps", PierceOverlaps(Input=model, RaysPerAxis=24),
                      ["OverlapCount", "CoplanarCount", "CoplanarPartner", "CoplanarHits", "InterferenceHits",
@@ -240,8 +249,8 @@ def main():
         else:
             items = records(surfaces, arrays, per_cell)
         result["runs"][label] = {"items": items, "table": table_rows(table), "per_cell": per_cell}
-    with open(os.path.join(args.out, "rank%d.json" % rank), "w") as f:
-        json.dump(result, f)
+    return result
 
 
-main()
+if __name__ == "__main__":
+    main()

@@ -1,13 +1,16 @@
 """ctest driver: the Pierce filters under `mpiexec -n 2 pvbatch` give exactly the serial arrays.
 
-Runs pv_mpi_case.py serially and on 2 MPI ranks, then compares every sample: the same set of
-samples (none missing; a cell on exactly one rank; a point shared by two ranks' pieces with the
-same values), bit-identical values, and rank 0's table equal to the serial table (the other
-ranks' tables empty). With --negative it also runs the MPI pipeline with PIERCE_VTK_NO_GATHER=1
-(each rank alone, the behaviour before the fix) and requires the comparison to fail there.
+`--stage run` runs pv_mpi_case.py (all cases in one process, to pay pvbatch's start-up once)
+serially, on 2 MPI ranks, and on 2 ranks with PIERCE_VTK_NO_GATHER=1 (each rank alone: the
+behaviour before the fix). `--stage compare --case C` then compares every sample of case C:
+the same set of samples (none missing; a cell on exactly one rank; a point shared by two ranks'
+pieces with the same values), bit-identical values, rank 0's table equal to the serial table
+and the other ranks' tables empty; and it requires the same comparison to fail for the run
+without gathering, so that the check is known to be able to fail.
 
-    python3 pv_mpi_check.py --pvbatch pvbatch --mpiexec mpiexec --plugin P.so --case sphere \
-        --samples samples --work DIR [--negative]
+    python3 pv_mpi_check.py --stage run --pvbatch pvbatch --mpiexec mpiexec --plugin P.so \
+        --samples samples --work DIR
+    python3 pv_mpi_check.py --stage compare --case sphere --work DIR
 """
 import argparse
 import json
@@ -69,42 +72,50 @@ def compare(serial, parallel):
     return problems
 
 
+FILTER = {"sphere": "Pierce Thickness", "step": "Pierce Thickness", "plates": "Pierce Overlaps",
+          "csg": "Pierce Ray Classify"}
+
+
 def main():
     p = argparse.ArgumentParser()
-    p.add_argument("--pvbatch", required=True)
-    p.add_argument("--mpiexec", required=True)
-    p.add_argument("--plugin", required=True)
-    p.add_argument("--case", required=True)
-    p.add_argument("--samples", required=True)
+    p.add_argument("--stage", required=True, choices=["run", "compare"])
+    p.add_argument("--pvbatch")
+    p.add_argument("--mpiexec")
+    p.add_argument("--plugin")
+    p.add_argument("--case")
+    p.add_argument("--samples")
     p.add_argument("--work", required=True)
-    p.add_argument("--negative", action="store_true")
     args = p.parse_args()
-    script = os.path.join(HERE, "pv_mpi_case.py")
-    data = os.path.join(args.work, "data")
-    dirs = {name: os.path.join(args.work, args.case, name) for name in ("serial", "mpi", "no_gather")}
-    for d in [data] + list(dirs.values()):
-        os.makedirs(d, exist_ok=True)
-    common = ["--plugin", args.plugin, "--case", args.case, "--data", data, "--samples", args.samples]
-    env = dict(os.environ)
-    env.pop("PIERCE_VTK_NO_GATHER", None)
-    env["OMPI_MCA_rmaps_base_oversubscribe"] = "1"
-    run([args.pvbatch, script, "--make-inputs"] + common, env)
-    run([args.pvbatch, script, "--out", dirs["serial"]] + common, env)
-    out = run([args.mpiexec] + MPI_FLAGS + [args.pvbatch, "--symmetric", script, "--out", dirs["mpi"]] + common, env)
-    if "on 2 ranks: the replicated surface" not in out:
-        sys.exit("FAIL: the filter did not report a distributed run")
-    problems = compare(load(dirs["serial"], 1), load(dirs["mpi"], 2))
+    dirs = {name: os.path.join(args.work, name) for name in ("data", "serial", "mpi", "no_gather")}
+    if args.stage == "run":
+        script = os.path.join(HERE, "pv_mpi_case.py")
+        for d in dirs.values():
+            os.makedirs(d, exist_ok=True)
+        common = ["--plugin", args.plugin, "--data", dirs["data"], "--samples", args.samples]
+        env = dict(os.environ)
+        env.pop("PIERCE_VTK_NO_GATHER", None)
+        run([args.pvbatch, script, "--make-inputs"] + common, env)
+        run([args.pvbatch, script, "--out", dirs["serial"]] + common, env)
+        log = run([args.mpiexec] + MPI_FLAGS + [args.pvbatch, "--symmetric", script, "--out", dirs["mpi"]] + common, env)
+        with open(os.path.join(args.work, "mpi.log"), "w") as f:
+            f.write(log)
+        env["PIERCE_VTK_NO_GATHER"] = "1"
+        run([args.mpiexec] + MPI_FLAGS + [args.pvbatch, "--symmetric", script, "--out", dirs["no_gather"]] + common,
+            env)
+        print("MPI runs done")
+        return
+    with open(os.path.join(args.work, "mpi.log")) as f:
+        if FILTER[args.case] + " on 2 ranks: the replicated surface" not in f.read():
+            sys.exit("FAIL: %s did not report a distributed run" % FILTER[args.case])
+    serial = load(os.path.join(dirs["serial"], args.case), 1)
+    problems = compare(serial, load(os.path.join(dirs["mpi"], args.case), 2))
     for problem in problems:
         print("FAIL: " + problem)
     if problems:
         sys.exit(1)
-    if args.negative:
-        env["PIERCE_VTK_NO_GATHER"] = "1"
-        run([args.mpiexec] + MPI_FLAGS + [args.pvbatch, "--symmetric", script, "--out", dirs["no_gather"]] + common,
-            env)
-        if not compare(load(dirs["serial"], 1), load(dirs["no_gather"], 2)):
-            sys.exit("FAIL: the check cannot fail: without gathering it still reports no difference")
-        print("negative check: without gathering the comparison fails, as it must")
+    if not compare(serial, load(os.path.join(dirs["no_gather"], args.case), 2)):
+        sys.exit("FAIL: the check cannot fail: without gathering it still reports no difference")
+    print("negative check: without gathering the comparison fails, as it must")
     print("MPI run matches serial: " + args.case)
 
 
