@@ -10,6 +10,7 @@ Cases (inputs written to DATA by `--make-inputs`, serially, before the runs):
   sphere  hollow sphere (two concentric UV spheres, wall 0.1), thickness per point and per cell
   step    the bundled STEP assembly (Pierce CAD reader), thickness per cell
   plates  samples/plates.obj as ten blocks (touching plates), overlaps
+  limit   the hollow sphere with MaxReplicatedMB = 0.5 (refused on 2 ranks)
   csg     two overlapping spheres (two blocks), ray classification of 2 x 64 line rays read
           from a two-piece .pvtp (each rank shoots its piece)
 """
@@ -193,7 +194,7 @@ def table_rows(table):
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("--plugin", required=True)
-    p.add_argument("--cases", default="sphere,step,plates,csg")
+    p.add_argument("--cases", default="sphere,step,plates,csg,limit")
     p.add_argument("--data", required=True)
     p.add_argument("--samples")
     p.add_argument("--out")
@@ -214,6 +215,12 @@ def main():
 
 def run_case(case, args, rank):
     runs = []
+    if case == "limit":  # 1.7 MB replicated, limit 0.5 MB: refused under MPI, ignored in serial
+        model = D3(Input=XMLPolyDataReader(FileName=[os.path.join(args.data, "shell.vtp")]))
+        proxy = PierceThickness(Input=model, MaxReplicatedMB=0.5)
+        proxy.UpdatePipeline()
+        output = proxy.GetClientSideObject().GetOutputDataObject(0)
+        return {"rank": rank, "cells": output.GetNumberOfCells()}
     if case == "sphere":
         model = D3(Input=XMLPolyDataReader(FileName=[os.path.join(args.data, "shell.vtp")]))
         for at in ("Points", "Cells"):

@@ -72,7 +72,7 @@ def compare(serial, parallel):
     return problems
 
 
-FILTER = {"sphere": "Pierce Thickness", "step": "Pierce Thickness", "plates": "Pierce Overlaps",
+FILTER = {"limit": "", "sphere": "Pierce Thickness", "step": "Pierce Thickness", "plates": "Pierce Overlaps",
           "csg": "Pierce Ray Classify"}
 
 
@@ -103,6 +103,18 @@ def main():
         run([args.mpiexec] + MPI_FLAGS + [args.pvbatch, "--symmetric", script, "--out", dirs["no_gather"]] + common,
             env)
         print("MPI runs done")
+        return
+    if args.case == "limit":
+        with open(os.path.join(args.work, "mpi.log")) as f:
+            log = f.read()
+        serial = load(os.path.join(dirs["serial"], "limit"), 1)
+        ranks = load(os.path.join(dirs["mpi"], "limit"), 2)
+        message = "takes about 1.7 MB on every rank, more than the limit of 0.5 MB (MaxReplicatedMB)"
+        print("serial output: %d cells; 2 ranks: %s cells; message %s" %
+              (serial[0]["cells"], "+".join(str(r["cells"]) for r in ranks), "found" if message in log else "missing"))
+        if serial[0]["cells"] == 0 or any(r["cells"] for r in ranks) or message not in log:
+            sys.exit("FAIL: the replication limit was not applied as it should")
+        print("MPI run matches serial: limit refused with a message")
         return
     with open(os.path.join(args.work, "mpi.log")) as f:
         if FILTER[args.case] + " on 2 ranks: the replicated surface" not in f.read():

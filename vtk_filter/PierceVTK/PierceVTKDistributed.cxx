@@ -404,9 +404,13 @@ void StageTimer::Stage(const std::string& name) {
 
 void ReportDistributedRun(const std::string& filter, const Distribution& distribution, const std::string& info,
                           const StageTimer& timer) {
-  if (!distribution.Distributed()) return;
+  const char* timing = std::getenv("PIERCE_VTK_TIMING");
+  if (!distribution.Distributed() && !(timing && std::string(timing) == "1")) return;
   std::ostringstream m;
-  m << filter << " on " << distribution.GetSize() << " ranks: " << info << "; times of the slowest rank:";
+  if (distribution.Distributed())
+    m << filter << " on " << distribution.GetSize() << " ranks: " << info << "; times of the slowest rank:";
+  else
+    m << filter << " in one process; times:";
   const char* sep = " ";
   for (const auto& [name, seconds] : timer.Stages()) {
     m << sep << name << ' ' << std::setprecision(4) << distribution.Max(seconds) << " s";

@@ -89,7 +89,8 @@ private:
 };
 
 // Distributed runs, collective: rank 0 prints `info` and the stage times of the slowest rank to
-// the output window ("<filter> on N ranks: ...; gather 0.1 s, ..."). Nothing in serial.
+// the output window ("<filter> on N ranks: ...; gather 0.1 s, ..."). In serial only with
+// PIERCE_VTK_TIMING=1 (for benchmarks; "gather" is then the surface extraction).
 void ReportDistributedRun(const std::string& filter, const Distribution& distribution, const std::string& info,
                           const StageTimer& timer);
 
