@@ -24,6 +24,9 @@ from paraview.simple import D3, LoadPlugin, XMLPolyDataReader
 LoadPlugin(sys.argv[1], ns=globals())
 t = PierceThickness(Input=D3(Input=XMLPolyDataReader(FileName=[sys.argv[2]])), SampleAt="Cells")
 t.UpdatePipeline()
+for line in open("/proc/self/status"):
+    if line.startswith("VmHWM"):
+        print("peak memory " + line.split(":")[1].strip())
 '''
 
 MAKE = r'''
@@ -80,8 +83,10 @@ def main():
             if len(stages) != 3:
                 sys.exit("no stage times in the output of %s:\n%s" % (" ".join(cmd), out[-3000:]))
             runs.append(stages)
-            print("  %d rank(s): gather %.3f s, BVH build %.3f s, trace %.3f s" %
-                  (ranks, stages["gather"], stages["BVH build"], stages["trace"]), flush=True)
+            peaks = re.findall(r"peak memory ([0-9]+) kB", out)
+            print("  %d rank(s): gather %.3f s, BVH build %.3f s, trace %.3f s; peak memory of rank 0 (pvbatch "
+                  "with D3 and the reader) %s MB" % (ranks, stages["gather"], stages["BVH build"], stages["trace"],
+                                                    int(peaks[0]) // 1024 if peaks else "?"), flush=True)
         results[ranks] = {k: statistics.median(r[k] for r in runs) for k in ("gather", "BVH build", "trace")}
     print("load after: " + uptime())
     print("| ranks | gather (s) | BVH build (s) | trace (s) | trace speed-up |")
