@@ -4,7 +4,7 @@ Writes a closed shell of two concentric UV spheres (radius 1 and 0.95, wound out
 2 x 2 x N x (N - 2) triangles, 1.63 M for the default N = 640) as a .vtp, then runs
 reader -> D3 -> Pierce Thickness (per triangle) with pvbatch on 1 and 2 ranks, each rank bound
 to one core (so one TBB thread per rank: the 2-rank run uses the cores the 1-rank run leaves
-idle), `--repeat` times each, and prints the filter's own stage times (slowest rank): gather
+idle), `--repeat` times each, interleaved, and prints the filter's own stage times (slowest rank): gather
 (surface extraction and, on 2 ranks, the exchange), BVH build, trace; median of the runs. The
 machine's load (uptime) is printed before and after.
 
@@ -72,10 +72,10 @@ def main():
     print("model: %s" % model)
     print("load before: " + uptime())
     env = dict(os.environ, PIERCE_VTK_TIMING="1")
-    results = {}
-    for ranks in (1, 2):
-        runs = []
-        for _ in range(args.repeat):
+    runs_of = {1: [], 2: []}
+    for _ in range(args.repeat):  # interleaved, so that a change of load falls on both alike
+        for ranks in (1, 2):
+            runs = runs_of[ranks]
             cmd = [args.mpiexec, "--allow-run-as-root", "--oversubscribe", "--bind-to", "core", "-n", str(ranks),
                    args.pvbatch, script, args.plugin, model]
             out = subprocess.run(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True).stdout
@@ -87,7 +87,8 @@ def main():
             print("  %d rank(s): gather %.3f s, BVH build %.3f s, trace %.3f s; peak memory of rank 0 (pvbatch "
                   "with D3 and the reader) %s MB" % (ranks, stages["gather"], stages["BVH build"], stages["trace"],
                                                     int(peaks[0]) // 1024 if peaks else "?"), flush=True)
-        results[ranks] = {k: statistics.median(r[k] for r in runs) for k in ("gather", "BVH build", "trace")}
+    results = {r: {k: statistics.median(x[k] for x in runs_of[r]) for k in ("gather", "BVH build", "trace")}
+               for r in (1, 2)}
     print("load after: " + uptime())
     print("| ranks | gather (s) | BVH build (s) | trace (s) | trace speed-up |")
     print("|---|---|---|---|---|")
