@@ -10,6 +10,7 @@ Cases (inputs written to DATA by `--make-inputs`, serially, before the runs):
   sphere  hollow sphere (two concentric UV spheres, wall 0.1), thickness per point and per cell
   step    the bundled STEP assembly (Pierce CAD reader), thickness per cell
   plates  samples/plates.obj as ten blocks (touching plates), overlaps
+  lines   line cells only (bad input): refused with an error on every rank
   limit   the hollow sphere with MaxReplicatedMB = 0.5 (refused on 2 ranks)
   csg     two overlapping spheres (two blocks), ray classification of 2 x 64 line rays read
           from a two-piece .pvtp (each rank shoots its piece)
@@ -194,7 +195,7 @@ def table_rows(table):
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("--plugin", required=True)
-    p.add_argument("--cases", default="sphere,step,plates,csg,limit")
+    p.add_argument("--cases", default="sphere,step,plates,csg,limit,lines")
     p.add_argument("--data", required=True)
     p.add_argument("--samples")
     p.add_argument("--out")
@@ -215,6 +216,12 @@ def main():
 
 def run_case(case, args, rank):
     runs = []
+    if case == "lines":  # bad input (line cells only): a clear error on every rank, no hang
+        model = D3(Input=XMLPolyDataReader(FileName=[os.path.join(args.data, "rays_0.vtp")]))
+        proxy = PierceThickness(Input=model)
+        proxy.UpdatePipeline()
+        output = proxy.GetClientSideObject().GetOutputDataObject(0)
+        return {"rank": rank, "cells": output.GetNumberOfCells()}
     if case == "limit":  # 1.7 MB replicated, limit 0.5 MB: refused under MPI, ignored in serial
         model = D3(Input=XMLPolyDataReader(FileName=[os.path.join(args.data, "shell.vtp")]))
         proxy = PierceThickness(Input=model, MaxReplicatedMB=0.5)

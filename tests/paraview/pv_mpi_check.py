@@ -72,7 +72,7 @@ def compare(serial, parallel):
     return problems
 
 
-FILTER = {"limit": "", "sphere": "Pierce Thickness", "step": "Pierce Thickness", "plates": "Pierce Overlaps",
+FILTER = {"lines": "", "limit": "", "sphere": "Pierce Thickness", "step": "Pierce Thickness", "plates": "Pierce Overlaps",
           "csg": "Pierce Ray Classify"}
 
 
@@ -103,6 +103,17 @@ def main():
         run([args.mpiexec] + MPI_FLAGS + [args.pvbatch, "--symmetric", script, "--out", dirs["no_gather"]] + common,
             env)
         print("MPI runs done")
+        return
+    if args.case == "lines":
+        with open(os.path.join(args.work, "mpi.log")) as f:
+            log = f.read()
+        ranks = load(os.path.join(dirs["mpi"], "lines"), 2)
+        message = "has no polygons"
+        print("2 ranks: %s cells; message %s" % ("+".join(str(r["cells"]) for r in ranks),
+                                                 "found" if message in log else "missing"))
+        if any(r["cells"] for r in ranks) or message not in log:
+            sys.exit("FAIL: bad input was not refused with a message")
+        print("MPI run matches serial: bad input refused on every rank")
         return
     if args.case == "limit":
         with open(os.path.join(args.work, "mpi.log")) as f:

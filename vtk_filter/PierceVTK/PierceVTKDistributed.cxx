@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <array>
 #include <cstdlib>
 #include <iomanip>
@@ -394,12 +395,16 @@ double Now() {
 }
 }  // namespace
 
-StageTimer::StageTimer() : Start(Now()) {}
+
+double CpuNow() { return double(std::clock()) / CLOCKS_PER_SEC; }
+
+StageTimer::StageTimer() : Wall(Now()), Cpu(CpuNow()) {}
 
 void StageTimer::Stage(const std::string& name) {
-  const double now = Now();
-  this->Times.emplace_back(name, now - this->Start);
-  this->Start = now;
+  const double wall = Now(), cpu = CpuNow();
+  this->Done.push_back({name, wall - this->Wall, cpu - this->Cpu});
+  this->Wall = wall;
+  this->Cpu = cpu;
 }
 
 void ReportDistributedRun(const std::string& filter, const Distribution& distribution, const std::string& info,
@@ -412,8 +417,9 @@ void ReportDistributedRun(const std::string& filter, const Distribution& distrib
   else
     m << filter << " in one process; times:";
   const char* sep = " ";
-  for (const auto& [name, seconds] : timer.Stages()) {
-    m << sep << name << ' ' << std::setprecision(4) << distribution.Max(seconds) << " s";
+  for (const StageTimer::Times& t : timer.Stages()) {
+    m << sep << t.name << ' ' << std::setprecision(4) << distribution.Max(t.wall) << " s (CPU "
+      << distribution.Max(t.cpu) << " s)";
     sep = ", ";
   }
   if (distribution.IsRoot()) vtkOutputWindowDisplayText((m.str() + "\n").c_str());

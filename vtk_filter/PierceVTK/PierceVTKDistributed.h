@@ -75,21 +75,26 @@ private:
   int Size = 1;
 };
 
-// Wall-clock time of the stages of one filter run (gather, BVH build, trace...).
+// Wall-clock and CPU time (of the whole process, all threads) of the stages of one filter run
+// (gather, BVH build, trace...).
 class StageTimer {
 public:
+  struct Times {
+    std::string name;
+    double wall, cpu;  // seconds
+  };
   StageTimer();
   // Ends the current stage, named `name`, and starts the next.
   void Stage(const std::string& name);
-  const std::vector<std::pair<std::string, double>>& Stages() const { return this->Times; }
+  const std::vector<Times>& Stages() const { return this->Done; }
 
 private:
-  std::vector<std::pair<std::string, double>> Times;  // seconds
-  double Start;
+  std::vector<Times> Done;
+  double Wall, Cpu;
 };
 
 // Distributed runs, collective: rank 0 prints `info` and the stage times of the slowest rank to
-// the output window ("<filter> on N ranks: ...; gather 0.1 s, ..."). In serial only with
+// the output window ("<filter> on N ranks: ...; gather 0.1 s (CPU 0.1 s), ..."). In serial only with
 // PIERCE_VTK_TIMING=1 (for benchmarks; "gather" is then the surface extraction).
 void ReportDistributedRun(const std::string& filter, const Distribution& distribution, const std::string& info,
                           const StageTimer& timer);
