@@ -1,8 +1,6 @@
 #include "PierceVTKDistributed.h"
 
 #include <algorithm>
-#include <chrono>
-#include <ctime>
 #include <array>
 #include <cstdlib>
 #include <iomanip>
@@ -387,24 +385,6 @@ bool Distribution::ExtractSurfaces(vtkDataObject* input, double max_replicated_m
   }
   out.solids = std::move(local);
   return true;
-}
-
-namespace {
-double Now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-}  // namespace
-
-
-double CpuNow() { return double(std::clock()) / CLOCKS_PER_SEC; }
-
-StageTimer::StageTimer() : Wall(Now()), Cpu(CpuNow()) {}
-
-void StageTimer::Stage(const std::string& name) {
-  const double wall = Now(), cpu = CpuNow();
-  this->Done.push_back({name, wall - this->Wall, cpu - this->Cpu});
-  this->Wall = wall;
-  this->Cpu = cpu;
 }
 
 void ReportDistributedRun(const std::string& filter, const Distribution& distribution, const std::string& info,

@@ -20,10 +20,11 @@
 // analyses its own piece alone (serial behaviour; wrong under MPI, kept to test the tests).
 #include <cstdint>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include <vtkType.h>
+
+#include "PierceVTKStageTimer.h"
 
 class vtkDataObject;
 class vtkMultiProcessController;
@@ -73,24 +74,6 @@ private:
   vtkMultiProcessController* Controller = nullptr;
   int Rank = 0;
   int Size = 1;
-};
-
-// Wall-clock and CPU time (of the whole process, all threads) of the stages of one filter run
-// (gather, BVH build, trace...).
-class StageTimer {
-public:
-  struct Times {
-    std::string name;
-    double wall, cpu;  // seconds
-  };
-  StageTimer();
-  // Ends the current stage, named `name`, and starts the next.
-  void Stage(const std::string& name);
-  const std::vector<Times>& Stages() const { return this->Done; }
-
-private:
-  std::vector<Times> Done;
-  double Wall, Cpu;
 };
 
 // Distributed runs, collective: rank 0 prints `info` and the stage times of the slowest rank to
