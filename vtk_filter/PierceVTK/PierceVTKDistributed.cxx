@@ -16,7 +16,9 @@
 #include <vtkCommunicator.h>
 #include <vtkDataObjectTree.h>
 #include <vtkIdList.h>
+#include <vtkDoubleArray.h>
 #include <vtkIdTypeArray.h>
+#include <vtkPoints.h>
 #include <vtkMultiProcessController.h>
 #include <vtkOutputWindow.h>
 #include <vtkPolyData.h>
@@ -276,21 +278,32 @@ bool Distribution::ExtractSurfaces(vtkDataObject* input, double max_replicated_m
   // The geometry: every rank's points and triangles (a, b, c, original id, rank within the id).
   std::vector<double> points;
   std::vector<vtkIdType> tris;
-  auto cell_ids = vtkSmartPointer<vtkIdList>::New();
+  points.reserve(std::size_t(3 * total_points));
+  tris.reserve(std::size_t(kTriFields) * std::size_t(total_triangles) / std::size_t(this->Size));
   for (std::size_t s = 0; s < local.size(); ++s) {
     vtkPolyData* surface = local[s].surface;
-    for (vtkIdType i = 0; i < surface->GetNumberOfPoints(); ++i) {
-      double p[3];
-      surface->GetPoint(i, p);
-      points.insert(points.end(), {p[0], p[1], p[2]});
+    const vtkIdType n_points = surface->GetNumberOfPoints();
+    if (auto* xyz = vtkDoubleArray::SafeDownCast(surface->GetPoints()->GetData())) {
+      points.insert(points.end(), xyz->GetPointer(0), xyz->GetPointer(0) + 3 * n_points);
+    } else {
+      for (vtkIdType i = 0; i < n_points; ++i) {
+        double p[3];
+        surface->GetPoint(i, p);
+        points.insert(points.end(), {p[0], p[1], p[2]});
+      }
     }
-    std::unordered_map<vtkIdType, vtkIdType> seen;  // triangles so far per original id
+    // The rank of each triangle among those of its original id (a triangulated polygon's
+    // triangles share it).
+    std::unordered_map<vtkIdType, vtkIdType> seen;
     vtkCellArray* polys = surface->GetPolys();
+    if (local_ids[s]) seen.reserve(std::size_t(polys->GetNumberOfCells()));
+    vtkIdType npts = 0;
+    const vtkIdType* pts = nullptr;
     for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c) {
-      polys->GetCellAtId(c, cell_ids);
+      polys->GetCellAtId(c, npts, pts);
       const vtkIdType key = local_ids[s] ? IdAt(local_ids[s], c) : 0;
       const vtkIdType seq = local_ids[s] ? seen[key]++ : 0;
-      tris.insert(tris.end(), {cell_ids->GetId(0), cell_ids->GetId(1), cell_ids->GetId(2), key, seq});
+      tris.insert(tris.end(), {pts[0], pts[1], pts[2], key, seq});
     }
   }
   const std::vector<double> all_points = this->AllGather(points);

@@ -175,15 +175,20 @@ vtkSmartPointer<vtkPolyData> DropGhostCells(vtkPolyData* in) {
   out->GetPointData()->PassData(in->GetPointData());
   out->GetFieldData()->PassData(in->GetFieldData());
   auto tris = vtkSmartPointer<vtkCellArray>::New();
-  out->GetCellData()->CopyAllocate(in->GetCellData(), in->GetNumberOfPolys());
-  auto ids = vtkSmartPointer<vtkIdList>::New();
+  auto kept = vtkSmartPointer<vtkIdList>::New();
+  auto to = vtkSmartPointer<vtkIdList>::New();
   vtkCellArray* polys = in->GetPolys();
+  tris->AllocateEstimate(polys->GetNumberOfCells(), 3);
+  vtkIdType npts = 0;
+  const vtkIdType* pts = nullptr;
   for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c) {
-    polys->GetCellAtId(c, ids);
     if ((int(ghosts->GetTuple1(c)) & flags) != 0) continue;
-    const vtkIdType id = tris->InsertNextCell(ids);
-    out->GetCellData()->CopyData(in->GetCellData(), c, id);
+    polys->GetCellAtId(c, npts, pts);
+    to->InsertNextId(tris->InsertNextCell(npts, pts));
+    kept->InsertNextId(c);
   }
+  out->GetCellData()->CopyAllocate(in->GetCellData(), kept->GetNumberOfIds());
+  out->GetCellData()->CopyData(in->GetCellData(), kept, to);
   out->SetPolys(tris);
   out->GetCellData()->RemoveArray(vtkDataSetAttributes::GhostArrayName());
   return out;
