@@ -15,6 +15,7 @@ without gathering, so that the check is known to be able to fail.
 import argparse
 import json
 import os
+import re
 import subprocess
 import sys
 
@@ -132,6 +133,20 @@ def main():
             sys.exit("FAIL: %s did not report a distributed run" % FILTER[args.case])
     serial = load(os.path.join(dirs["serial"], args.case), 1)
     problems = compare(serial, load(os.path.join(dirs["mpi"], args.case), 2))
+    # Nothing measured twice: the thickness runs report how many samples each rank measured;
+    # their sum is the number of distinct samples (run order of pv_mpi_case.py: sphere Points,
+    # sphere Cells, step).
+    with open(os.path.join(args.work, "mpi.log")) as f:
+        measured = [int(n) for n in re.findall(r"samples measured per rank: [0-9 +]+ = ([0-9]+)", f.read())]
+    first = {"sphere": 0, "step": 2}.get(args.case)
+    if first is not None:
+        for k, (label, serial_run) in enumerate(serial[0]["runs"].items()):
+            n = measured[first + k] if first + k < len(measured) else None
+            print("%s: %s samples measured by the ranks in all, %d distinct samples" %
+                  (label, n, len(serial_run["items"])))
+            if n != len(serial_run["items"]):
+                problems.append("%s: the ranks measured %s samples, not %d: some twice or none" %
+                                (label, n, len(serial_run["items"])))
     for problem in problems:
         print("FAIL: " + problem)
     if problems:

@@ -201,6 +201,7 @@ bool Distribution::ExtractSurfaces(vtkDataObject* input, double max_replicated_m
   if (!this->Distributed()) return pierce_vtk::ExtractSurfaces(input, out, error, orient_outward);
   out = Surfaces{};
   out.distributed = true;
+  out.rank = this->Rank;
 
   // This rank's solids, without ghost cells; an empty piece is fine.
   std::vector<Solid> local;
@@ -325,8 +326,11 @@ bool Distribution::ExtractSurfaces(vtkDataObject* input, double max_replicated_m
     std::vector<Record> records;
     bool ids = true;
     std::map<int, std::uint32_t> own_offset;
+    constexpr std::uint32_t kUnset = ~std::uint32_t(0);
+    std::vector<std::uint32_t> rank_begin(std::size_t(this->Size) + 1, kUnset);
     for (const Piece& p : solid.pieces) {
       const std::uint32_t offset = std::uint32_t(vertices.size());
+      rank_begin[std::size_t(p.rank)] = offset;
       if (p.rank == this->Rank) own_offset[p.rank] = offset;
       for (vtkIdType i = 0; i < p.points; ++i) {
         const double* x = all_points.data() + p.point_begin + 3 * std::size_t(i);
@@ -372,6 +376,10 @@ bool Distribution::ExtractSurfaces(vtkDataObject* input, double max_replicated_m
                                "results are exact and the same on any number of ranks, but can differ from a serial "
                                "run in the last bits where hits tie");
     }
+    rank_begin[std::size_t(this->Size)] = std::uint32_t(vertices.size());
+    for (int r = this->Size - 1; r >= 0; --r)  // ranks without a piece: empty blocks
+      if (rank_begin[std::size_t(r)] == kUnset) rank_begin[std::size_t(r)] = rank_begin[std::size_t(r) + 1];
+    out.rank_vertex_begin.push_back(std::move(rank_begin));
     std::vector<pierce::Tri> triangles;
     triangles.reserve(records.size());
     for (const Record& r : records) triangles.push_back(r.tri);

@@ -41,6 +41,10 @@ struct Surfaces {
   std::vector<Solid> solids;          // serial: solids[g] is the scene's geometry g
   std::vector<std::string> warnings;  // input parts that were ignored
   bool distributed = false;           // scene = the surfaces of all ranks, solids = this rank's
+  // Distributed runs: per scene geometry, the first vertex of each rank's points (one entry per
+  // rank and one past the end); rank r's triangles use vertices [begin[r], begin[r + 1]) only.
+  std::vector<std::vector<std::uint32_t>> rank_vertex_begin;
+  int rank = 0;
 };
 
 // Scene triangle of cell c of `solid`.

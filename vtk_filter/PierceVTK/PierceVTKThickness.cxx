@@ -1,6 +1,8 @@
 #include "PierceVTKThickness.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <limits>
 #include <set>
 #include <tuple>
@@ -22,6 +24,7 @@
 
 #include "PierceVTKDistributed.h"
 #include "PierceVTKSurfaces.h"
+#include "pierce/analysis/mesh_topology.h"
 
 namespace pierce_vtk {
 
@@ -163,7 +166,38 @@ std::vector<std::uint8_t> UsedPoints(vtkPolyData* surface) {
 
 }  // namespace
 
-std::vector<std::vector<std::uint8_t>> OwnSampleMask(const Surfaces& surfaces, bool per_cell) {
+namespace {
+int RankOfVertex(const std::vector<std::uint32_t>& begin, std::uint32_t v) {
+  return int(std::upper_bound(begin.begin(), begin.end(), v) - begin.begin()) - 1;
+}
+}  // namespace
+
+VertexOwners FindVertexOwners(const Surfaces& surfaces) {
+  VertexOwners o;
+  const std::size_t n = surfaces.scene.geometries().size();
+  o.weld.resize(n);
+  o.owner.resize(n);
+  o.shared.resize(n);
+  for (std::size_t g = 0; g < n; ++g) {
+    const pierce::Geometry& geo = surfaces.scene.geometry(std::uint32_t(g));
+    const std::vector<std::uint32_t>& begin = surfaces.rank_vertex_begin[g];
+    o.weld[g] = pa::weld_by_position(geo.vertices);
+    o.owner[g].assign(geo.vertices.size(), std::numeric_limits<int>::max());
+    o.shared[g].assign(geo.vertices.size(), 0);
+    for (const pierce::Tri& t : geo.triangles)
+      for (const std::uint32_t v : t) {
+        int& owner = o.owner[g][o.weld[g][v]];
+        owner = std::min(owner, RankOfVertex(begin, v));
+      }
+    for (const pierce::Tri& t : geo.triangles)
+      for (const std::uint32_t v : t)
+        if (RankOfVertex(begin, v) != o.owner[g][o.weld[g][v]]) o.shared[g][o.weld[g][v]] = 1;
+  }
+  return o;
+}
+
+std::vector<std::vector<std::uint8_t>> OwnSampleMask(const Surfaces& surfaces, bool per_cell,
+                                                     const VertexOwners& owners) {
   std::vector<std::vector<std::uint8_t>> mask(surfaces.scene.geometries().size());
   for (std::size_t g = 0; g < mask.size(); ++g) {
     const pierce::Geometry& geo = surfaces.scene.geometry(std::uint32_t(g));
@@ -175,11 +209,67 @@ std::vector<std::vector<std::uint8_t>> OwnSampleMask(const Surfaces& surfaces, b
       for (vtkIdType c = 0; c < solid.surface->GetNumberOfCells(); ++c) m[PrimOfCell(solid, c)] = 1;
     } else {
       const std::vector<std::uint8_t> used = UsedPoints(solid.surface);
-      for (std::size_t i = 0; i < used.size(); ++i)
-        if (used[i]) m[solid.vertex_offset + i] = 1;
+      for (std::size_t i = 0; i < used.size(); ++i) {
+        const std::uint32_t v = solid.vertex_offset + std::uint32_t(i);
+        if (used[i] && owners.owner[solid.id][owners.weld[solid.id][v]] == surfaces.rank) m[v] = 1;
+      }
     }
   }
   return mask;
+}
+
+void ShareVertexResults(const Surfaces& surfaces, const VertexOwners& owners, const Distribution& distribution,
+                        pa::ThicknessResult& result) {
+  // (solid, group, thickness, status, thin) of the shared groups this rank measured.
+  std::vector<double> mine;
+  std::set<std::pair<std::uint32_t, std::uint32_t>> sent;
+  for (std::size_t i = 0; i < result.size(); ++i) {
+    const std::uint32_t g = result.solid[i];
+    const std::uint32_t group = owners.weld[g][result.element[i]];
+    if (!owners.shared[g][group] || owners.owner[g][group] != surfaces.rank || !sent.insert({g, group}).second)
+      continue;
+    mine.insert(mine.end(), {double(g), double(group), result.thickness[i], double(result.status[i]),
+                             double(result.thin[i])});
+  }
+  const std::vector<double> all = distribution.AllGather(mine);
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> from;
+  for (std::size_t k = 0; k + 5 <= all.size(); k += 5) from[{std::uint32_t(all[k]), std::uint32_t(all[k + 1])}] = k;
+  for (const Solid& solid : surfaces.solids) {
+    const std::uint32_t g = solid.id;
+    const std::vector<std::uint8_t> used = UsedPoints(solid.surface);
+    for (std::size_t i = 0; i < used.size(); ++i) {
+      const std::uint32_t v = solid.vertex_offset + std::uint32_t(i);
+      const std::uint32_t group = owners.weld[g][v];
+      if (!used[i] || owners.owner[g][group] == surfaces.rank) continue;
+      const auto found = from.find({g, group});
+      if (found == from.end()) continue;  // cannot happen: the owner measured every group it owns
+      const std::size_t k = found->second;
+      result.solid.push_back(g);
+      result.element.push_back(v);
+      result.point.push_back(surfaces.scene.geometry(g).vertices[v]);
+      result.normal.push_back({});
+      result.thickness.push_back(all[k + 2]);
+      result.status.push_back(static_cast<pa::ThicknessStatus>(int(all[k + 3])));
+      result.thin.push_back(static_cast<std::uint8_t>(all[k + 4]));
+    }
+  }
+}
+
+std::string DescribeSampleSplit(const pa::ThicknessResult& result, bool per_cell, const VertexOwners& owners,
+                                const Distribution& distribution) {
+  vtkIdType measured = 0;
+  for (std::size_t i = 0; i < result.size(); ++i)
+    measured += per_cell || owners.weld[result.solid[i]][result.element[i]] == result.element[i];
+  const std::vector<vtkIdType> all = distribution.AllGather(std::vector<vtkIdType>{measured});
+  std::ostringstream m;
+  m << "samples measured per rank: ";
+  vtkIdType sum = 0;
+  for (std::size_t r = 0; r < all.size(); ++r) {
+    m << (r ? " + " : "") << all[r];
+    sum += all[r];
+  }
+  m << " = " << sum;
+  return m.str();
 }
 
 std::vector<pa::SolidThickness> GatherThicknessStatistics(const Surfaces& surfaces, bool per_cell,

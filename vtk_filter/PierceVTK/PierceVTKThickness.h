@@ -2,6 +2,7 @@
 // vtkPierceThickness's conversions: filter settings to ThicknessOptions, results to VTK arrays
 // on the solids' surfaces and to a per-solid statistics table.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "pierce/analysis/thickness.h"
@@ -34,9 +35,30 @@ void AttachThickness(const pierce::analysis::ThicknessResult& result, Surfaces& 
 void WriteThicknessTable(const std::vector<pierce::analysis::SolidThickness>& solids,
                          const std::vector<double>& percentiles, vtkTable* table);
 
-// Distributed runs: sample_mask selecting this rank's samples (the points its triangles use, or
-// its triangles) in the gathered scene.
-std::vector<std::vector<std::uint8_t>> OwnSampleMask(const Surfaces& surfaces, bool per_cell);
+// Distributed runs, per vertex: which rank measures each group of coincident vertices (the
+// points along a cut belong to two ranks' pieces): the lowest rank whose triangles use it.
+struct VertexOwners {
+  std::vector<std::vector<std::uint32_t>> weld;   // per geometry: weld_by_position
+  std::vector<std::vector<int>> owner;            // per geometry and group (its first vertex)
+  std::vector<std::vector<std::uint8_t>> shared;  // the group is used by another rank too
+};
+VertexOwners FindVertexOwners(const Surfaces& surfaces);
+
+// Distributed runs: sample_mask selecting this rank's samples in the gathered scene: its
+// triangles, or the vertex groups it owns (`owners`, per vertex), so that nothing is measured
+// twice.
+std::vector<std::vector<std::uint8_t>> OwnSampleMask(const Surfaces& surfaces, bool per_cell,
+                                                     const VertexOwners& owners);
+
+// Distributed runs, per vertex, collective: adds to `result` the points of this rank's pieces
+// whose group another rank measured, with that rank's values.
+void ShareVertexResults(const Surfaces& surfaces, const VertexOwners& owners, const Distribution& distribution,
+                        pierce::analysis::ThicknessResult& result);
+
+// Distributed runs, collective: "samples measured per rank: a + b = n" (per vertex, a group of
+// coincident vertices is one sample), for the run report.
+std::string DescribeSampleSplit(const pierce::analysis::ThicknessResult& result, bool per_cell,
+                                const VertexOwners& owners, const Distribution& distribution);
 
 // Distributed runs, collective: the per-solid statistics of every rank's samples as attached to
 // its surfaces (AttachThickness), on rank 0 (empty elsewhere). Per vertex, points of one solid at

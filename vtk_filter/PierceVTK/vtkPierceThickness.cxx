@@ -87,9 +87,14 @@ int vtkPierceThickness::RequestData(
   settings.cone_aggregate = this->ConeAggregate;
   pierce::analysis::ThicknessOptions options = pierce_vtk::ToThicknessOptions(settings);
   const bool perCell = this->SampleAt == CELLS;
+  pierce_vtk::VertexOwners owners;
   if (surfaces.distributed)
   {
-    options.sample_mask = pierce_vtk::OwnSampleMask(surfaces, perCell);
+    if (!perCell)
+    {
+      owners = pierce_vtk::FindVertexOwners(surfaces);
+    }
+    options.sample_mask = pierce_vtk::OwnSampleMask(surfaces, perCell, owners);
   }
 
   pierce_vtk::ProgressBridge progress(this, 0.05, 1.0);
@@ -116,6 +121,14 @@ int vtkPierceThickness::RequestData(
   if (!distribution.AllTrue(result.completed && !progress.CheckAbort()))
   {
     return 1; // aborted: the executive hands out empty outputs
+  }
+  if (surfaces.distributed)
+  {
+    info += "; " + pierce_vtk::DescribeSampleSplit(result, perCell, owners, distribution);
+    if (!perCell)
+    {
+      pierce_vtk::ShareVertexResults(surfaces, owners, distribution, result);
+    }
   }
   pierce_vtk::AttachThickness(result, surfaces);
   vtkDataObject* output = vtkDataObject::GetData(outputVector, 0);
