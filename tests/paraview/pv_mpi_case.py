@@ -11,6 +11,7 @@ Cases (inputs written to DATA by `--make-inputs`, serially, before the runs):
   step    the bundled STEP assembly (Pierce CAD reader), thickness per cell
   plates  samples/plates.obj as ten blocks (touching plates), overlaps
   lines   line cells only (bad input): refused with an error on every rank
+  volume  a Wavelet volume spread by D3 (its pieces' boundaries include the cut): refused
   limit   the hollow sphere with MaxReplicatedMB = 0.5 (refused on 2 ranks)
   csg     two overlapping spheres (two blocks), ray classification of 2 x 64 line rays read
           from a two-piece .pvtp (each rank shoots its piece)
@@ -20,7 +21,8 @@ import json
 import os
 import struct
 
-from paraview.simple import D3, LoadPlugin, XMLMultiBlockDataReader, XMLPartitionedPolydataReader, XMLPolyDataReader
+from paraview.simple import (D3, LoadPlugin, Wavelet, XMLMultiBlockDataReader, XMLPartitionedPolydataReader,
+                             XMLPolyDataReader)
 from vtkmodules.vtkParallelCore import vtkMultiProcessController
 
 
@@ -195,7 +197,7 @@ def table_rows(table):
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("--plugin", required=True)
-    p.add_argument("--cases", default="sphere,step,plates,csg,limit,lines")
+    p.add_argument("--cases", default="sphere,step,plates,csg,limit,lines,volume")
     p.add_argument("--data", required=True)
     p.add_argument("--samples")
     p.add_argument("--out")
@@ -216,8 +218,11 @@ def main():
 
 def run_case(case, args, rank):
     runs = []
-    if case == "lines":  # bad input (line cells only): a clear error on every rank, no hang
-        model = D3(Input=XMLPolyDataReader(FileName=[os.path.join(args.data, "rays_0.vtp")]))
+    if case in ("lines", "volume"):  # bad input: a clear error on every rank, no hang
+        if case == "lines":  # line cells only
+            model = D3(Input=XMLPolyDataReader(FileName=[os.path.join(args.data, "rays_0.vtp")]))
+        else:  # a volume split between the ranks: its pieces' boundaries include the cut
+            model = D3(Input=Wavelet(WholeExtent=[0, 10, 0, 10, 0, 10]))
         proxy = PierceThickness(Input=model)
         proxy.UpdatePipeline()
         output = proxy.GetClientSideObject().GetOutputDataObject(0)

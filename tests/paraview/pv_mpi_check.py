@@ -73,7 +73,7 @@ def compare(serial, parallel):
     return problems
 
 
-FILTER = {"lines": "", "limit": "", "sphere": "Pierce Thickness", "step": "Pierce Thickness", "plates": "Pierce Overlaps",
+FILTER = {"lines": "", "volume": "", "limit": "", "sphere": "Pierce Thickness", "step": "Pierce Thickness", "plates": "Pierce Overlaps",
           "csg": "Pierce Ray Classify"}
 
 
@@ -105,11 +105,11 @@ def main():
             env)
         print("MPI runs done")
         return
-    if args.case == "lines":
+    if args.case in ("lines", "volume"):
         with open(os.path.join(args.work, "mpi.log")) as f:
             log = f.read()
-        ranks = load(os.path.join(dirs["mpi"], "lines"), 2)
-        message = "has no polygons"
+        ranks = load(os.path.join(dirs["mpi"], args.case), 2)
+        message = {"lines": "has no polygons", "volume": "is a volume (3D cells) split between 2 ranks"}[args.case]
         print("2 ranks: %s cells; message %s" % ("+".join(str(r["cells"]) for r in ranks),
                                                  "found" if message in log else "missing"))
         if any(r["cells"] for r in ranks) or message not in log:

@@ -7,7 +7,7 @@
 #include <map>
 #include <sstream>
 #include <tuple>
-#include <unordered_map>
+#include <unordered_set>
 #include <utility>
 
 #include <vtkAbstractArray.h>
@@ -63,11 +63,40 @@ vtkIdType IdAt(vtkDataArray* ids, vtkIdType c) {
   return vtkIdType(ids->GetTuple1(c));
 }
 
+// Each triangle's original cell id and its rank among the triangles of that id: the triangles
+// of one triangulated polygon share the id and follow each other. False (keys empty) without
+// ids, or when an id comes back after other ids — two input cells with one id, as when the data
+// was split into pieces before D3: the ids cannot restore the serial order.
+bool OriginalKeys(vtkPolyData* surface, std::vector<vtkIdType>& keys, std::vector<vtkIdType>& seqs) {
+  keys.clear();
+  seqs.clear();
+  vtkDataArray* ids = OriginalCellIds(surface);
+  if (!ids) return false;
+  const vtkIdType n = surface->GetNumberOfPolys();
+  keys.resize(std::size_t(n));
+  seqs.resize(std::size_t(n));
+  std::unordered_set<vtkIdType> seen;
+  seen.reserve(std::size_t(n));
+  for (vtkIdType c = 0; c < n; ++c) {
+    const vtkIdType key = IdAt(ids, c);
+    keys[std::size_t(c)] = key;
+    if (c > 0 && key == keys[std::size_t(c) - 1]) {
+      seqs[std::size_t(c)] = seqs[std::size_t(c) - 1] + 1;
+    } else if (!seen.insert(key).second) {
+      keys.clear();
+      seqs.clear();
+      return false;
+    }
+  }
+  return true;
+}
+
 // One rank's piece of one solid in the gathered buffers.
 struct Piece {
   int rank = 0;
   vtkIdType points = 0, triangles = 0;
   bool has_ids = false;
+  bool from_volume = false;
   std::size_t point_begin = 0;  // in the gathered coordinates (3 doubles a point)
   std::size_t id_begin = 0;     // in the gathered triangle records (5 ids a triangle)
 };
@@ -77,7 +106,7 @@ struct GlobalSolid {
   std::vector<Piece> pieces;  // in rank order
 };
 
-constexpr vtkIdType kHeaderFields = 4;  // flat index, points, triangles, has ids
+constexpr vtkIdType kHeaderFields = 5;  // flat index, points, triangles, has ids, from a volume
 constexpr vtkIdType kTriFields = 5;     // a, b, c, original id, rank within that id
 
 }  // namespace
@@ -215,12 +244,12 @@ bool Distribution::ExtractSurfaces(vtkDataObject* input, double max_replicated_m
   // Headers and names first, so that every rank knows the size before the geometry moves.
   std::vector<vtkIdType> header;
   std::vector<char> names;
-  std::vector<vtkDataArray*> local_ids(local.size());
+  std::vector<std::vector<vtkIdType>> keys(local.size()), seqs(local.size());
   for (std::size_t s = 0; s < local.size(); ++s) {
     vtkPolyData* surface = local[s].surface;
-    local_ids[s] = OriginalCellIds(surface);
+    const bool has_ids = OriginalKeys(surface, keys[s], seqs[s]);
     header.insert(header.end(), {vtkIdType(local[s].flat_index), surface->GetNumberOfPoints(),
-                                 surface->GetNumberOfPolys(), local_ids[s] ? 1 : 0});
+                                 surface->GetNumberOfPolys(), has_ids ? 1 : 0, local[s].from_volume ? 1 : 0});
     names.insert(names.end(), local[s].name.begin(), local[s].name.end());
     names.push_back('\0');
   }
@@ -239,6 +268,7 @@ bool Distribution::ExtractSurfaces(vtkDataObject* input, double max_replicated_m
         piece.points = headers[h + 1];
         piece.triangles = headers[h + 2];
         piece.has_ids = headers[h + 3] != 0;
+        piece.from_volume = headers[h + 4] != 0;
         piece.point_begin = point_at;
         piece.id_begin = id_at;
         point_at += 3 * std::size_t(piece.points);
@@ -274,6 +304,20 @@ bool Distribution::ExtractSurfaces(vtkDataObject* input, double max_replicated_m
     error = "the input has no cells on any rank";
     return false;
   }
+  // A volume split between ranks: each piece's boundary includes the cut, which is no surface
+  // of the solid. Refuse rather than measure walls that are not there.
+  for (const auto& [flat, solid] : solids) {
+    int volume_pieces = 0;
+    for (const Piece& p : solid.pieces) volume_pieces += p.from_volume ? 1 : 0;
+    if (volume_pieces > 1) {
+      const std::string label = vtkDataObjectTree::SafeDownCast(input) ? "block '" + solid.name + "'" : "the input";
+      error = label + " is a volume (3D cells) split between " + std::to_string(volume_pieces) +
+              " ranks: its pieces' boundaries include the cuts, which are no surface of the solid. Extract its surface "
+              "where it is whole (Extract Surface before D3, or on data read on one rank), then spread that surface "
+              "with D3";
+      return false;
+    }
+  }
   info = size.str();
 
   // The geometry: every rank's points and triangles (a, b, c, original id, rank within the id).
@@ -293,19 +337,17 @@ bool Distribution::ExtractSurfaces(vtkDataObject* input, double max_replicated_m
         points.insert(points.end(), {p[0], p[1], p[2]});
       }
     }
-    // The rank of each triangle among those of its original id (a triangulated polygon's
-    // triangles share it).
-    std::unordered_map<vtkIdType, vtkIdType> seen;
     vtkCellArray* polys = surface->GetPolys();
-    if (local_ids[s]) seen.reserve(std::size_t(polys->GetNumberOfCells()));
     vtkIdType npts = 0;
     const vtkIdType* pts = nullptr;
     for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c) {
       polys->GetCellAtId(c, npts, pts);
-      const vtkIdType key = local_ids[s] ? IdAt(local_ids[s], c) : 0;
-      const vtkIdType seq = local_ids[s] ? seen[key]++ : 0;
-      tris.insert(tris.end(), {pts[0], pts[1], pts[2], key, seq});
+      const bool keyed = !keys[s].empty();
+      tris.insert(tris.end(), {pts[0], pts[1], pts[2], keyed ? keys[s][std::size_t(c)] : 0,
+                               keyed ? seqs[s][std::size_t(c)] : 0});
     }
+    keys[s] = {};
+    seqs[s] = {};
   }
   const std::vector<double> all_points = this->AllGather(points);
   const std::vector<vtkIdType> all_tris = this->AllGather(tris);

@@ -7,6 +7,7 @@
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
+#include <vtkCellTypes.h>
 #include <vtkCompositeDataSet.h>
 #include <vtkDataObjectTree.h>
 #include <vtkDataObjectTreeIterator.h>
@@ -21,6 +22,8 @@
 #include <vtkStringArray.h>
 #include <vtkTable.h>
 #include <vtkTriangleFilter.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkUnstructuredGrid.h>
 
 #include "pierce/error.h"
 
@@ -162,6 +165,20 @@ vtkSmartPointer<vtkDataObjectTreeIterator> LeafIterator(vtkDataObjectTree* tree)
   return it;
 }
 
+// Whether a data set has 3D cells (its surface is then a boundary the filter extracts).
+bool HasVolumeCells(vtkDataObject* data) {
+  auto* ds = vtkDataSet::SafeDownCast(data);
+  if (!ds || vtkPolyData::SafeDownCast(ds) || ds->GetNumberOfCells() == 0) return false;
+  if (auto* grid = vtkUnstructuredGrid::SafeDownCast(ds)) {
+    vtkUnsignedCharArray* types = grid->GetDistinctCellTypesArray();
+    for (vtkIdType i = 0; types && i < types->GetNumberOfTuples(); ++i)
+      if (vtkCellTypes::GetDimension(types->GetValue(i)) == 3) return true;
+    return false;
+  }
+  // Structured data sets have one cell type.
+  return vtkCellTypes::GetDimension(static_cast<unsigned char>(ds->GetCellType(0))) == 3;
+}
+
 // The surface without the cells vtkGhostType flags as duplicate or hidden (points unchanged).
 vtkSmartPointer<vtkPolyData> DropGhostCells(vtkPolyData* in) {
   vtkDataArray* ghosts = in->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName());
@@ -212,13 +229,15 @@ bool CollectSolids(vtkDataObject* input, std::vector<Solid>& solids, std::vector
     error = "no input";
     return false;
   }
-  auto add = [&](vtkSmartPointer<vtkPolyData> surface, std::string name, unsigned int flat, const std::string& label) {
+  auto add = [&](vtkSmartPointer<vtkPolyData> surface, std::string name, unsigned int flat, const std::string& label,
+                 vtkDataObject* source) {
     if (drop_ghost_cells) surface = DropGhostCells(surface);
     if (FindNonFinitePoint(surface, label, error)) return false;
     Solid solid;
     solid.surface = surface;
     solid.name = std::move(name);
     solid.flat_index = flat;
+    solid.from_volume = drop_ghost_cells && HasVolumeCells(source);  // distributed runs only
     solids.push_back(std::move(solid));
     return true;
   };
@@ -241,7 +260,7 @@ bool CollectSolids(vtkDataObject* input, std::vector<Solid>& solids, std::vector
         continue;
       }
       if (!surface) continue;
-      if (!add(surface, name, flat, label)) return false;
+      if (!add(surface, name, flat, label, it->GetCurrentDataObject())) return false;
     }
     if (solids.empty() && !allow_empty) {
       error = first_problem.empty() ? "the composite input has no cells" : first_problem;
@@ -260,7 +279,7 @@ bool CollectSolids(vtkDataObject* input, std::vector<Solid>& solids, std::vector
     error = "the input has no cells";
     return false;
   }
-  return add(surface, "", 0, "input");
+  return add(surface, "", 0, "input", input);
 }
 
 bool ExtractSurfaces(vtkDataObject* input, Surfaces& out, std::string& error, bool orient_outward) {

@@ -34,6 +34,7 @@ struct Solid {
   // triangle prim_of_cell[c]. Empty in serial, where point i is vertex i and cell c triangle c.
   std::vector<std::uint32_t> prim_of_cell;
   std::uint32_t vertex_offset = 0;
+  bool from_volume = false;  // distributed runs: the boundary of a data set with 3D cells
 };
 
 struct Surfaces {
@@ -54,8 +55,9 @@ inline std::uint32_t PrimOfCell(const Solid& solid, vtkIdType c) {
 
 // The triangulated solids of the input without building a scene (see ExtractSurfaces; the
 // distributed extraction builds the scene from all ranks' solids). With `allow_empty`, an input
-// without cells gives no solids instead of an error; with `drop_ghost_cells`, cells flagged in
-// vtkGhostType (duplicate or hidden) are left out. Points are checked to be finite.
+// without cells gives no solids instead of an error; with `drop_ghost_cells` (distributed runs),
+// cells flagged in vtkGhostType (duplicate or hidden) are left out and solids extracted from data
+// sets with 3D cells are marked `from_volume`. Points are checked to be finite.
 bool CollectSolids(vtkDataObject* input, std::vector<Solid>& solids, std::vector<std::string>& warnings,
                    std::string& error, bool allow_empty, bool drop_ghost_cells);
 
