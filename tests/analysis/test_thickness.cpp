@@ -1,7 +1,9 @@
 // Thickness maps: ray, cone and sphere methods on scenes with known wall thickness.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <stdexcept>
 
 #include "analysis_scenes.h"
 #include "pierce/analysis/thickness.h"
@@ -91,6 +93,53 @@ TEST_F(HollowSphere, CancelStopsEarly) {
   const ThicknessResult r =
       compute_thickness(world_->accel, {}, [&](std::size_t, std::size_t) { return ++calls < 2; });
   EXPECT_FALSE(r.completed);
+}
+
+// A sample mask (how the ParaView filters split one scene's samples between MPI ranks) measures
+// the selected elements exactly as the full run does, and only those.
+TEST_F(HollowSphere, SampleMaskMeasuresTheSelectedElementsAsTheFullRun) {
+  for (SampleAt per : {SampleAt::vertex, SampleAt::face}) {
+    ThicknessOptions o;
+    o.per = per;
+    const ThicknessResult full = compute_thickness(world_->accel, o);
+    const std::size_t n = per == SampleAt::vertex ? mesh_.vertices.size() : mesh_.triangles.size();
+    o.sample_mask.assign(1, std::vector<std::uint8_t>(n, 0));
+    for (std::size_t e = 0; e < n; e += 3) o.sample_mask[0][e] = 1;
+    const ThicknessResult part = compute_thickness(world_->accel, o);
+    ASSERT_EQ(part.size(), (n + 2) / 3);
+    for (std::size_t i = 0; i < part.size(); ++i) {
+      const std::uint32_t e = part.element[i];
+      ASSERT_EQ(e % 3, 0u);
+      ASSERT_EQ(full.element[e], e);
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(part.thickness[i]), std::bit_cast<std::uint64_t>(full.thickness[e]));
+      ASSERT_EQ(part.status[i], full.status[e]);
+    }
+    o.sample_mask[0].pop_back();
+    EXPECT_THROW(compute_thickness(world_->accel, o), std::invalid_argument);
+  }
+}
+
+// Coincident vertices are measured once, at the first of them: a mask selecting only a later copy
+// still gets the value (the first one is measured for it).
+TEST(SampleMask, ACopyOfAnUnselectedVertexGetsItsValue) {
+  const gen::Mesh sphere = hollow_sphere(2, 0.9);
+  gen::Mesh soup;  // every triangle with its own three vertices
+  for (const Tri& t : sphere.triangles) {
+    const std::uint32_t base = std::uint32_t(soup.vertices.size());
+    for (auto v : t) soup.vertices.push_back(sphere.vertices[v]);
+    soup.triangles.push_back({base, base + 1, base + 2});
+  }
+  const auto w = make_world({soup});
+  ThicknessOptions o;
+  const ThicknessResult full = compute_thickness(w->accel, o);
+  o.sample_mask.assign(1, std::vector<std::uint8_t>(soup.vertices.size(), 0));
+  const std::size_t last = soup.vertices.size() - 1;
+  o.sample_mask[0][last] = 1;
+  const ThicknessResult part = compute_thickness(w->accel, o);
+  ASSERT_FALSE(part.element.empty());
+  ASSERT_EQ(part.element.back(), last);
+  EXPECT_TRUE(std::isfinite(part.thickness.back()));
+  EXPECT_EQ(std::bit_cast<std::uint64_t>(part.thickness.back()), std::bit_cast<std::uint64_t>(full.thickness[last]));
 }
 
 // Per-face ray thickness of every triangle of every box equals that box's extent along the

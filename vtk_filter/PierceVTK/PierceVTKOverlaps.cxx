@@ -67,8 +67,9 @@ bool RunOverlaps(const pierce::Scene& scene, const OverlapSettings& settings, Pr
 void AttachOverlaps(const OverlapResults& results, Surfaces& surfaces) {
   const pa::TriangleOverlapArrays a = pa::triangle_overlap_arrays(
     surfaces.scene, results.coplanar ? &*results.coplanar : nullptr, results.rays ? &*results.rays : nullptr);
-  for (std::size_t g = 0; g < surfaces.solids.size(); ++g) {
-    vtkPolyData* surface = surfaces.solids[g].surface;
+  for (std::size_t s = 0; s < surfaces.solids.size(); ++s) {
+    const Solid& solid_piece = surfaces.solids[s];
+    vtkPolyData* surface = solid_piece.surface;
     const vtkIdType n = surface->GetNumberOfCells();
     auto solid = NewArray<vtkIntArray>("SolidId", n);
     auto overlap = NewArray<vtkIntArray>("OverlapCount", n);
@@ -76,9 +77,9 @@ void AttachOverlaps(const OverlapResults& results, Surfaces& surfaces) {
     auto partner = NewArray<vtkIntArray>("CoplanarPartner", n);
     auto coplanar_hits = NewArray<vtkIntArray>("CoplanarHits", n);
     auto interference_hits = NewArray<vtkIntArray>("InterferenceHits", n);
-    const std::size_t base = a.tri_offset[g];
+    const std::size_t base = a.tri_offset[solid_piece.id];
     for (vtkIdType c = 0; c < n; ++c) {
-      const std::size_t i = base + std::size_t(c);
+      const std::size_t i = base + std::size_t(PrimOfCell(solid_piece, c));
       solid->SetValue(c, int(a.solid[i]));
       overlap->SetValue(c, int(a.overlap_count[i]));
       coplanar->SetValue(c, int(a.coplanar_count[i]));
@@ -120,8 +121,8 @@ void WriteOverlapTable(const OverlapResults& results, const Surfaces& surfaces, 
     kind->InsertNextValue(k);
     solid_a->InsertNextValue(int(a));
     solid_b->InsertNextValue(int(b));
-    name_a->InsertNextValue(surfaces.solids.at(a).name);
-    name_b->InsertNextValue(surfaces.solids.at(b).name);
+    name_a->InsertNextValue(surfaces.scene.geometry(a).name);
+    name_b->InsertNextValue(surfaces.scene.geometry(b).name);
     count->InsertNextValue(vtkIdType(n));
     max_depth->InsertNextValue(depth);
     penetration->InsertNextValue(pen);

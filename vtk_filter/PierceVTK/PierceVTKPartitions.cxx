@@ -74,7 +74,7 @@ class Writer {
     for (std::uint32_t k = 0; k < s.count; ++k) {
       if (k > 0) list += ' ', names += '+';
       list += std::to_string(s.solids[k]);
-      names += surfaces_.solids[s.solids[k]].name;
+      names += surfaces_.scene.geometry(s.solids[k]).name;
     }
     const double obl_in = Obliquity(*s.in_hit, s.ray->dir), obl_out = Obliquity(*s.out_hit, s.ray->dir);
     ray_id_->InsertNextValue(s.ray_id);

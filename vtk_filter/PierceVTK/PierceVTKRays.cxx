@@ -4,6 +4,9 @@
 #include <limits>
 
 #include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDataSetAttributes.h>
+#include <vtkPointData.h>
 #include <vtkDataArray.h>
 #include <vtkDataSet.h>
 #include <vtkIdList.h>
@@ -27,12 +30,18 @@ bool MakeRay(const double org[3], const double dir[3], double length, pierce::Ra
 }  // namespace
 
 bool ExtractRays(vtkDataSet* data, const double default_direction[3], vtkDataArray* direction_array,
-                 double max_length, RayInput& out, std::string& error) {
+                 double max_length, RayInput& out, std::string& error, vtkIdType id_offset, bool skip_ghosts) {
   out = RayInput{};
+  if (skip_ghosts && (!data || data->GetNumberOfPoints() == 0)) return true;
   if (!data || data->GetNumberOfPoints() == 0) {
     error = "the ray input has no points";
     return false;
   }
+  auto ghost = [&](vtkDataSetAttributes* attributes, vtkIdType i, int flags) {
+    if (!skip_ghosts) return false;
+    vtkDataArray* g = attributes->GetArray(vtkDataSetAttributes::GhostArrayName());
+    return g && (int(g->GetTuple1(i)) & flags) != 0;
+  };
   auto* poly = vtkPolyData::SafeDownCast(data);
   if (poly && poly->GetNumberOfLines() > 0) {
     out.from_cells = true;
@@ -41,6 +50,9 @@ bool ExtractRays(vtkDataSet* data, const double default_direction[3], vtkDataArr
     auto ids = vtkSmartPointer<vtkIdList>::New();
     for (vtkIdType c = 0; c < lines->GetNumberOfCells(); ++c) {
       lines->GetCellAtId(c, ids);
+      if (ghost(poly->GetCellData(), first_line + c,
+                vtkDataSetAttributes::DUPLICATECELL | vtkDataSetAttributes::HIDDENCELL))
+        continue;
       pierce::Ray ray;
       double a[3] = {0, 0, 0}, b[3] = {0, 0, 0}, d[3];
       if (ids->GetNumberOfIds() >= 2) {
@@ -54,7 +66,7 @@ bool ExtractRays(vtkDataSet* data, const double default_direction[3], vtkDataArr
         continue;
       }
       out.rays.push_back(ray);
-      out.source_ids.push_back(first_line + c);
+      out.source_ids.push_back(id_offset + first_line + c);
     }
     return true;
   }
@@ -67,6 +79,8 @@ bool ExtractRays(vtkDataSet* data, const double default_direction[3], vtkDataArr
   out.rays.reserve(std::size_t(data->GetNumberOfPoints()));
   for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i) {
     double p[3], d[3] = {default_direction[0], default_direction[1], default_direction[2]};
+    if (ghost(data->GetPointData(), i, vtkDataSetAttributes::DUPLICATEPOINT | vtkDataSetAttributes::HIDDENPOINT))
+      continue;
     data->GetPoint(i, p);
     if (direction_array) direction_array->GetTuple(i, d);
     pierce::Ray ray;
@@ -75,7 +89,7 @@ bool ExtractRays(vtkDataSet* data, const double default_direction[3], vtkDataArr
       continue;
     }
     out.rays.push_back(ray);
-    out.source_ids.push_back(i);
+    out.source_ids.push_back(id_offset + i);
   }
   return true;
 }

@@ -29,8 +29,12 @@ struct RayInput {
 };
 
 // False with `error` when the data set holds no points, or the direction array is not a
-// 3-component point array.
+// 3-component point array. Distributed runs: `id_offset` is added to the source ids (the ray
+// input elements of the ranks before this one, so that RayId is the serial id), and with
+// `skip_ghosts` cells or points flagged in vtkGhostType are not rays (their owner shoots them);
+// an empty piece is then no error.
 bool ExtractRays(vtkDataSet* data, const double default_direction[3], vtkDataArray* direction_array,
-                 double max_length, RayInput& out, std::string& error);
+                 double max_length, RayInput& out, std::string& error, vtkIdType id_offset = 0,
+                 bool skip_ghosts = false);
 
 }  // namespace pierce_vtk

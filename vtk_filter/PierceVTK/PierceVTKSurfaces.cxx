@@ -7,6 +7,7 @@
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
+#include <vtkCellTypes.h>
 #include <vtkCompositeDataSet.h>
 #include <vtkDataObjectTree.h>
 #include <vtkDataObjectTreeIterator.h>
@@ -21,6 +22,8 @@
 #include <vtkStringArray.h>
 #include <vtkTable.h>
 #include <vtkTriangleFilter.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkUnstructuredGrid.h>
 
 #include "pierce/error.h"
 
@@ -122,18 +125,8 @@ bool FindNonFinitePoint(vtkPolyData* pd, const std::string& label, std::string& 
   return false;
 }
 
-// Divergence theorem; negative for a closed surface with inward-facing (clockwise) winding.
-double SignedVolume(const std::vector<pierce::Vec3d>& v, const std::vector<pierce::Tri>& tris) {
-  if (v.empty()) return 0.0;
-  const pierce::Vec3d o = v.front();  // relative coordinates: no cancellation far from the origin
-  double six_volume = 0.0;
-  for (const pierce::Tri& t : tris) six_volume += pierce::dot(v[t[0]] - o, pierce::cross(v[t[1]] - o, v[t[2]] - o));
-  return six_volume / 6.0;
-}
-
-bool AddSolid(Surfaces& out, vtkSmartPointer<vtkPolyData> surface, std::string name, unsigned int flat_index,
-              const std::string& label, bool orient_outward, std::string& error) {
-  if (FindNonFinitePoint(surface, label, error)) return false;
+bool AddSolid(Surfaces& out, Solid solid, const std::string& label, bool orient_outward, std::string& error) {
+  vtkPolyData* surface = solid.surface;
   std::vector<pierce::Vec3d> vertices(std::size_t(surface->GetNumberOfPoints()));
   for (vtkIdType i = 0; i < surface->GetNumberOfPoints(); ++i) {
     double p[3];
@@ -153,12 +146,13 @@ bool AddSolid(Surfaces& out, vtkSmartPointer<vtkPolyData> surface, std::string n
     out.warnings.push_back(label + " faces inward (negative volume): analysed with its triangles flipped");
   }
   try {
-    out.scene.add_mesh(std::move(vertices), std::move(triangles), name, label);
+    out.scene.add_mesh(std::move(vertices), std::move(triangles), solid.name, label);
   } catch (const pierce::InputError& e) {
     error = e.what();
     return false;
   }
-  out.solids.push_back(Solid{surface, std::move(name), flat_index});
+  solid.id = std::uint32_t(out.solids.size());
+  out.solids.push_back(std::move(solid));
   return true;
 }
 
@@ -171,14 +165,82 @@ vtkSmartPointer<vtkDataObjectTreeIterator> LeafIterator(vtkDataObjectTree* tree)
   return it;
 }
 
+// Whether a data set has 3D cells (its surface is then a boundary the filter extracts).
+bool HasVolumeCells(vtkDataObject* data) {
+  auto* ds = vtkDataSet::SafeDownCast(data);
+  if (!ds || vtkPolyData::SafeDownCast(ds) || ds->GetNumberOfCells() == 0) return false;
+  if (auto* grid = vtkUnstructuredGrid::SafeDownCast(ds)) {
+    vtkUnsignedCharArray* types = grid->GetDistinctCellTypesArray();
+    for (vtkIdType i = 0; types && i < types->GetNumberOfTuples(); ++i)
+      if (vtkCellTypes::GetDimension(types->GetValue(i)) == 3) return true;
+    return false;
+  }
+  // Structured data sets have one cell type.
+  return vtkCellTypes::GetDimension(static_cast<unsigned char>(ds->GetCellType(0))) == 3;
+}
+
+// The surface without the cells vtkGhostType flags as duplicate or hidden (points unchanged).
+vtkSmartPointer<vtkPolyData> DropGhostCells(vtkPolyData* in) {
+  vtkDataArray* ghosts = in->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName());
+  if (!ghosts) return in;
+  const int flags = vtkDataSetAttributes::DUPLICATECELL | vtkDataSetAttributes::HIDDENCELL;
+  bool any = false;
+  for (vtkIdType c = 0; c < in->GetNumberOfCells() && !any; ++c) any = (int(ghosts->GetTuple1(c)) & flags) != 0;
+  if (!any) return in;
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  out->SetPoints(in->GetPoints());
+  out->GetPointData()->PassData(in->GetPointData());
+  out->GetFieldData()->PassData(in->GetFieldData());
+  auto tris = vtkSmartPointer<vtkCellArray>::New();
+  auto kept = vtkSmartPointer<vtkIdList>::New();
+  auto to = vtkSmartPointer<vtkIdList>::New();
+  vtkCellArray* polys = in->GetPolys();
+  tris->AllocateEstimate(polys->GetNumberOfCells(), 3);
+  vtkIdType npts = 0;
+  const vtkIdType* pts = nullptr;
+  for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c) {
+    if ((int(ghosts->GetTuple1(c)) & flags) != 0) continue;
+    polys->GetCellAtId(c, npts, pts);
+    to->InsertNextId(tris->InsertNextCell(npts, pts));
+    kept->InsertNextId(c);
+  }
+  out->GetCellData()->CopyAllocate(in->GetCellData(), kept->GetNumberOfIds());
+  out->GetCellData()->CopyData(in->GetCellData(), kept, to);
+  out->SetPolys(tris);
+  out->GetCellData()->RemoveArray(vtkDataSetAttributes::GhostArrayName());
+  return out;
+}
+
 }  // namespace
 
-bool ExtractSurfaces(vtkDataObject* input, Surfaces& out, std::string& error, bool orient_outward) {
-  out = Surfaces{};
+// Divergence theorem; negative for a closed surface with inward-facing (clockwise) winding.
+double SignedVolume(const std::vector<pierce::Vec3d>& v, const std::vector<pierce::Tri>& tris) {
+  if (v.empty()) return 0.0;
+  const pierce::Vec3d o = v.front();  // relative coordinates: no cancellation far from the origin
+  double six_volume = 0.0;
+  for (const pierce::Tri& t : tris) six_volume += pierce::dot(v[t[0]] - o, pierce::cross(v[t[1]] - o, v[t[2]] - o));
+  return six_volume / 6.0;
+}
+
+bool CollectSolids(vtkDataObject* input, std::vector<Solid>& solids, std::vector<std::string>& warnings,
+                   std::string& error, bool allow_empty, bool drop_ghost_cells) {
+  solids.clear();
   if (!input) {
     error = "no input";
     return false;
   }
+  auto add = [&](vtkSmartPointer<vtkPolyData> surface, std::string name, unsigned int flat, const std::string& label,
+                 vtkDataObject* source) {
+    if (drop_ghost_cells) surface = DropGhostCells(surface);
+    if (FindNonFinitePoint(surface, label, error)) return false;
+    Solid solid;
+    solid.surface = surface;
+    solid.name = std::move(name);
+    solid.flat_index = flat;
+    solid.from_volume = drop_ghost_cells && HasVolumeCells(source);  // distributed runs only
+    solids.push_back(std::move(solid));
+    return true;
+  };
   if (auto* tree = vtkDataObjectTree::SafeDownCast(input)) {
     std::string first_problem;
     auto it = LeafIterator(tree);
@@ -191,16 +253,16 @@ bool ExtractSurfaces(vtkDataObject* input, Surfaces& out, std::string& error, bo
       const std::string label = "block '" + name + "'";
       vtkSmartPointer<vtkPolyData> surface;
       std::string problem;
-      if (!Triangulate(it->GetCurrentDataObject(), label, surface, out.warnings, problem)) {
+      if (!Triangulate(it->GetCurrentDataObject(), label, surface, warnings, problem)) {
         // A composite input may mix solids with curves or points: skip those blocks.
-        out.warnings.push_back(problem + "; block skipped");
+        warnings.push_back(problem + "; block skipped");
         if (first_problem.empty()) first_problem = problem;
         continue;
       }
       if (!surface) continue;
-      if (!AddSolid(out, surface, name, flat, label, orient_outward, error)) return false;
+      if (!add(surface, name, flat, label, it->GetCurrentDataObject())) return false;
     }
-    if (out.solids.empty()) {
+    if (solids.empty() && !allow_empty) {
       error = first_problem.empty() ? "the composite input has no cells" : first_problem;
       return false;
     }
@@ -211,12 +273,24 @@ bool ExtractSurfaces(vtkDataObject* input, Surfaces& out, std::string& error, bo
     return false;
   }
   vtkSmartPointer<vtkPolyData> surface;
-  if (!Triangulate(input, "input", surface, out.warnings, error)) return false;
+  if (!Triangulate(input, "input", surface, warnings, error)) return false;
   if (!surface) {
+    if (allow_empty) return true;
     error = "the input has no cells";
     return false;
   }
-  return AddSolid(out, surface, "", 0, "input", orient_outward, error);
+  return add(surface, "", 0, "input", input);
+}
+
+bool ExtractSurfaces(vtkDataObject* input, Surfaces& out, std::string& error, bool orient_outward) {
+  out = Surfaces{};
+  std::vector<Solid> solids;
+  if (!CollectSolids(input, solids, out.warnings, error, false, false)) return false;
+  for (Solid& solid : solids) {
+    const std::string label = vtkDataObjectTree::SafeDownCast(input) ? "block '" + solid.name + "'" : "input";
+    if (!AddSolid(out, std::move(solid), label, orient_outward, error)) return false;
+  }
+  return true;
 }
 
 vtkSmartPointer<vtkDataObject> NewSurfaceOutput(vtkDataObject* input) {
@@ -266,7 +340,7 @@ void StoreSurfaces(const Surfaces& surfaces, vtkDataObject* input, vtkDataObject
 void AddSolidNames(const Surfaces& surfaces, vtkFieldData* field_data) {
   auto names = vtkSmartPointer<vtkStringArray>::New();
   names->SetName("SolidNames");
-  for (const Solid& s : surfaces.solids) names->InsertNextValue(s.name);
+  for (const pierce::Geometry& g : surfaces.scene.geometries()) names->InsertNextValue(g.name);
   field_data->AddArray(names);
 }
 

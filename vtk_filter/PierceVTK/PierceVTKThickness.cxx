@@ -1,10 +1,16 @@
 #include "PierceVTKThickness.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <limits>
+#include <set>
+#include <tuple>
 #include <sstream>
 
+#include <vtkCellArray.h>
 #include <vtkCellData.h>
+#include <vtkIdList.h>
 #include <vtkDataSetAttributes.h>
 #include <vtkDoubleArray.h>
 #include <vtkIdTypeArray.h>
@@ -16,7 +22,9 @@
 #include <vtkTable.h>
 #include <vtkUnsignedCharArray.h>
 
+#include "PierceVTKDistributed.h"
 #include "PierceVTKSurfaces.h"
+#include "pierce/analysis/mesh_topology.h"
 
 namespace pierce_vtk {
 
@@ -59,11 +67,32 @@ void AttachThickness(const pa::ThicknessResult& result, Surfaces& surfaces) {
     a.thickness->Fill(std::numeric_limits<double>::quiet_NaN());
     a.thin->Fill(0);
     a.status->Fill(static_cast<unsigned char>(pa::ThicknessStatus::no_normal));
-    a.solid->Fill(static_cast<int>(g));
+    a.solid->Fill(static_cast<int>(surfaces.solids[g].id));
+  }
+  // Result entries are (scene geometry, scene element); map them to this rank's solids.
+  std::vector<int> local_of(surfaces.scene.geometries().size(), -1);
+  for (std::size_t s = 0; s < surfaces.solids.size(); ++s) local_of[surfaces.solids[s].id] = int(s);
+  std::vector<std::vector<vtkIdType>> cell_of_prim(surfaces.solids.size());  // distributed, per cell
+  if (per_cell) {
+    for (std::size_t s = 0; s < surfaces.solids.size(); ++s) {
+      const Solid& solid = surfaces.solids[s];
+      if (solid.prim_of_cell.empty()) continue;
+      cell_of_prim[s].assign(surfaces.scene.geometry(solid.id).triangles.size(), -1);
+      for (std::size_t c = 0; c < solid.prim_of_cell.size(); ++c) cell_of_prim[s][solid.prim_of_cell[c]] = vtkIdType(c);
+    }
   }
   for (std::size_t i = 0; i < result.size(); ++i) {
-    Arrays& a = arrays[result.solid[i]];
-    const vtkIdType e = static_cast<vtkIdType>(result.element[i]);
+    const int s = local_of[result.solid[i]];
+    if (s < 0) continue;
+    const Solid& solid = surfaces.solids[std::size_t(s)];
+    Arrays& a = arrays[std::size_t(s)];
+    vtkIdType e = static_cast<vtkIdType>(result.element[i]);
+    if (per_cell && !cell_of_prim[std::size_t(s)].empty()) {
+      e = cell_of_prim[std::size_t(s)][std::size_t(e)];
+    } else if (!per_cell) {
+      e -= vtkIdType(solid.vertex_offset);
+    }
+    if (e < 0 || e >= a.thickness->GetNumberOfValues()) continue;  // another rank's element
     a.thickness->SetValue(e, result.thickness[i]);
     a.thin->SetValue(e, result.thin[i]);
     a.status->SetValue(e, static_cast<unsigned char>(result.status[i]));
@@ -80,7 +109,8 @@ void AttachThickness(const pa::ThicknessResult& result, Surfaces& surfaces) {
   }
 }
 
-void WriteThicknessTable(const pa::ThicknessResult& result, vtkTable* table) {
+void WriteThicknessTable(const std::vector<pa::SolidThickness>& solids, const std::vector<double>& percentile_list,
+                         vtkTable* table) {
   auto column = [&](auto array, const std::string& name) {
     array->SetName(name.c_str());
     table->AddColumn(array);
@@ -97,15 +127,13 @@ void WriteThicknessTable(const pa::ThicknessResult& result, vtkTable* table) {
   auto max = column(vtkSmartPointer<vtkDoubleArray>::New(), "Max");
   auto mean = column(vtkSmartPointer<vtkDoubleArray>::New(), "Mean");
   std::vector<vtkSmartPointer<vtkDoubleArray>> percentiles;
-  if (!result.solids.empty()) {
-    for (const auto& [q, value] : result.solids.front().summary.percentiles) {
-      std::ostringstream n;
-      n << 'P' << q;
-      percentiles.push_back(column(vtkSmartPointer<vtkDoubleArray>::New(), n.str()));
-    }
+  for (const double q : percentile_list) {
+    std::ostringstream n;
+    n << 'P' << q;
+    percentiles.push_back(column(vtkSmartPointer<vtkDoubleArray>::New(), n.str()));
   }
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (const pa::SolidThickness& s : result.solids) {
+  for (const pa::SolidThickness& s : solids) {
     id->InsertNextValue(static_cast<int>(s.geom));
     name->InsertNextValue(s.name);
     elements->InsertNextValue(static_cast<vtkIdType>(s.elements));
@@ -120,6 +148,179 @@ void WriteThicknessTable(const pa::ThicknessResult& result, vtkTable* table) {
     for (std::size_t k = 0; k < percentiles.size(); ++k)
       percentiles[k]->InsertNextValue(any && k < s.summary.percentiles.size() ? s.summary.percentiles[k].second : nan);
   }
+}
+
+namespace {
+
+// Per point of each solid: whether one of its triangles uses it.
+std::vector<std::uint8_t> UsedPoints(vtkPolyData* surface) {
+  std::vector<std::uint8_t> used(std::size_t(surface->GetNumberOfPoints()), 0);
+  auto ids = vtkSmartPointer<vtkIdList>::New();
+  vtkCellArray* polys = surface->GetPolys();
+  for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c) {
+    polys->GetCellAtId(c, ids);
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k) used[std::size_t(ids->GetId(k))] = 1;
+  }
+  return used;
+}
+
+}  // namespace
+
+namespace {
+int RankOfVertex(const std::vector<std::uint32_t>& begin, std::uint32_t v) {
+  return int(std::upper_bound(begin.begin(), begin.end(), v) - begin.begin()) - 1;
+}
+}  // namespace
+
+VertexOwners FindVertexOwners(const Surfaces& surfaces) {
+  VertexOwners o;
+  const std::size_t n = surfaces.scene.geometries().size();
+  o.weld.resize(n);
+  o.owner.resize(n);
+  o.shared.resize(n);
+  for (std::size_t g = 0; g < n; ++g) {
+    const pierce::Geometry& geo = surfaces.scene.geometry(std::uint32_t(g));
+    const std::vector<std::uint32_t>& begin = surfaces.rank_vertex_begin[g];
+    o.weld[g] = pa::weld_by_position(geo.vertices);
+    o.owner[g].assign(geo.vertices.size(), std::numeric_limits<int>::max());
+    o.shared[g].assign(geo.vertices.size(), 0);
+    for (const pierce::Tri& t : geo.triangles)
+      for (const std::uint32_t v : t) {
+        int& owner = o.owner[g][o.weld[g][v]];
+        owner = std::min(owner, RankOfVertex(begin, v));
+      }
+    for (const pierce::Tri& t : geo.triangles)
+      for (const std::uint32_t v : t)
+        if (RankOfVertex(begin, v) != o.owner[g][o.weld[g][v]]) o.shared[g][o.weld[g][v]] = 1;
+  }
+  return o;
+}
+
+std::vector<std::vector<std::uint8_t>> OwnSampleMask(const Surfaces& surfaces, bool per_cell,
+                                                     const VertexOwners& owners) {
+  std::vector<std::vector<std::uint8_t>> mask(surfaces.scene.geometries().size());
+  for (std::size_t g = 0; g < mask.size(); ++g) {
+    const pierce::Geometry& geo = surfaces.scene.geometry(std::uint32_t(g));
+    mask[g].assign(per_cell ? geo.triangles.size() : geo.vertices.size(), 0);
+  }
+  for (const Solid& solid : surfaces.solids) {
+    std::vector<std::uint8_t>& m = mask[solid.id];
+    if (per_cell) {
+      for (vtkIdType c = 0; c < solid.surface->GetNumberOfCells(); ++c) m[PrimOfCell(solid, c)] = 1;
+    } else {
+      const std::vector<std::uint8_t> used = UsedPoints(solid.surface);
+      for (std::size_t i = 0; i < used.size(); ++i) {
+        const std::uint32_t v = solid.vertex_offset + std::uint32_t(i);
+        if (used[i] && owners.owner[solid.id][owners.weld[solid.id][v]] == surfaces.rank) m[v] = 1;
+      }
+    }
+  }
+  return mask;
+}
+
+void ShareVertexResults(const Surfaces& surfaces, const VertexOwners& owners, const Distribution& distribution,
+                        pa::ThicknessResult& result) {
+  // (solid, group, thickness, status, thin) of the shared groups this rank measured.
+  std::vector<double> mine;
+  std::set<std::pair<std::uint32_t, std::uint32_t>> sent;
+  for (std::size_t i = 0; i < result.size(); ++i) {
+    const std::uint32_t g = result.solid[i];
+    const std::uint32_t group = owners.weld[g][result.element[i]];
+    if (!owners.shared[g][group] || owners.owner[g][group] != surfaces.rank || !sent.insert({g, group}).second)
+      continue;
+    mine.insert(mine.end(), {double(g), double(group), result.thickness[i], double(result.status[i]),
+                             double(result.thin[i])});
+  }
+  const std::vector<double> all = distribution.AllGather(mine);
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> from;
+  for (std::size_t k = 0; k + 5 <= all.size(); k += 5) from[{std::uint32_t(all[k]), std::uint32_t(all[k + 1])}] = k;
+  for (const Solid& solid : surfaces.solids) {
+    const std::uint32_t g = solid.id;
+    const std::vector<std::uint8_t> used = UsedPoints(solid.surface);
+    for (std::size_t i = 0; i < used.size(); ++i) {
+      const std::uint32_t v = solid.vertex_offset + std::uint32_t(i);
+      const std::uint32_t group = owners.weld[g][v];
+      if (!used[i] || owners.owner[g][group] == surfaces.rank) continue;
+      const auto found = from.find({g, group});
+      if (found == from.end()) continue;  // cannot happen: the owner measured every group it owns
+      const std::size_t k = found->second;
+      result.solid.push_back(g);
+      result.element.push_back(v);
+      result.point.push_back(surfaces.scene.geometry(g).vertices[v]);
+      result.normal.push_back({});
+      result.thickness.push_back(all[k + 2]);
+      result.status.push_back(static_cast<pa::ThicknessStatus>(int(all[k + 3])));
+      result.thin.push_back(static_cast<std::uint8_t>(all[k + 4]));
+    }
+  }
+}
+
+std::string DescribeSampleSplit(const pa::ThicknessResult& result, bool per_cell, const VertexOwners& owners,
+                                const Distribution& distribution) {
+  vtkIdType measured = 0;
+  for (std::size_t i = 0; i < result.size(); ++i)
+    measured += per_cell || owners.weld[result.solid[i]][result.element[i]] == result.element[i];
+  const std::vector<vtkIdType> all = distribution.AllGather(std::vector<vtkIdType>{measured});
+  std::ostringstream m;
+  m << "samples measured per rank: ";
+  vtkIdType sum = 0;
+  for (std::size_t r = 0; r < all.size(); ++r) {
+    m << (r ? " + " : "") << all[r];
+    sum += all[r];
+  }
+  m << " = " << sum;
+  return m.str();
+}
+
+std::vector<pa::SolidThickness> GatherThicknessStatistics(const Surfaces& surfaces, bool per_cell,
+                                                          const pa::ThicknessOptions& options,
+                                                          const Distribution& distribution) {
+  // (solid, x, y, z, thickness, status, thin) per own sample.
+  constexpr std::size_t kFields = 7;
+  std::vector<double> mine;
+  for (const Solid& solid : surfaces.solids) {
+    vtkDataSetAttributes* data = per_cell ? static_cast<vtkDataSetAttributes*>(solid.surface->GetCellData())
+                                          : static_cast<vtkDataSetAttributes*>(solid.surface->GetPointData());
+    vtkDataArray* thickness = data->GetArray("Thickness");
+    vtkDataArray* status = data->GetArray("ThicknessStatus");
+    vtkDataArray* thin = data->GetArray("Thin");
+    const std::vector<std::uint8_t> used = per_cell ? std::vector<std::uint8_t>{} : UsedPoints(solid.surface);
+    const vtkIdType n = thickness ? thickness->GetNumberOfTuples() : 0;
+    for (vtkIdType e = 0; e < n; ++e) {
+      double x[3] = {0, 0, 0};
+      if (!per_cell) {
+        if (!used[std::size_t(e)]) continue;
+        solid.surface->GetPoint(e, x);
+      }
+      mine.insert(mine.end(), {double(solid.id), x[0], x[1], x[2], thickness->GetTuple1(e), status->GetTuple1(e),
+                               thin->GetTuple1(e)});
+    }
+  }
+  const std::vector<double> all = distribution.GatherToRoot(mine);
+  std::vector<pa::SolidThickness> solids;
+  if (!distribution.IsRoot()) return solids;
+  const std::size_t n_solids = surfaces.scene.geometries().size();
+  std::vector<std::vector<double>> values(n_solids);
+  solids.resize(n_solids);
+  std::set<std::tuple<std::uint32_t, double, double, double>> seen;
+  for (std::size_t i = 0; i + kFields <= all.size(); i += kFields) {
+    const std::uint32_t g = std::uint32_t(all[i]);
+    if (!per_cell && !seen.insert({g, all[i + 1], all[i + 2], all[i + 3]}).second) continue;
+    pa::SolidThickness& st = solids[g];
+    ++st.elements;
+    const auto status = static_cast<pa::ThicknessStatus>(int(all[i + 5]));
+    st.no_exit += status == pa::ThicknessStatus::no_exit;
+    st.no_normal += status == pa::ThicknessStatus::no_normal;
+    st.thin += all[i + 6] != 0;
+    if (std::isfinite(all[i + 4])) values[g].push_back(all[i + 4]);
+  }
+  for (std::size_t g = 0; g < n_solids; ++g) {
+    solids[g].geom = std::uint32_t(g);
+    solids[g].name = surfaces.scene.geometry(std::uint32_t(g)).name;
+    solids[g].valid = values[g].size();
+    solids[g].summary = pa::summarize(std::move(values[g]), options.percentiles, options.histogram_bins);
+  }
+  return solids;
 }
 
 }  // namespace pierce_vtk

@@ -1,12 +1,17 @@
 #pragma once
 // vtkPierceThickness's conversions: filter settings to ThicknessOptions, results to VTK arrays
 // on the solids' surfaces and to a per-solid statistics table.
+#include <cstdint>
+#include <string>
+#include <vector>
+
 #include "pierce/analysis/thickness.h"
 
 class vtkTable;
 
 namespace pierce_vtk {
 
+class Distribution;
 struct Surfaces;
 
 struct ThicknessSettings {
@@ -26,7 +31,40 @@ pierce::analysis::ThicknessOptions ToThicknessOptions(const ThicknessSettings& s
 void AttachThickness(const pierce::analysis::ThicknessResult& result, Surfaces& surfaces);
 
 // One row per solid: SolidId, Name, Elements, Valid, NoExit, NoNormal, Thin, Min, Max, Mean and
-// the percentiles as P<q>.
-void WriteThicknessTable(const pierce::analysis::ThicknessResult& result, vtkTable* table);
+// the percentiles as P<q> (one column per entry of `percentiles`).
+void WriteThicknessTable(const std::vector<pierce::analysis::SolidThickness>& solids,
+                         const std::vector<double>& percentiles, vtkTable* table);
+
+// Distributed runs, per vertex: which rank measures each group of coincident vertices (the
+// points along a cut belong to two ranks' pieces): the lowest rank whose triangles use it.
+struct VertexOwners {
+  std::vector<std::vector<std::uint32_t>> weld;   // per geometry: weld_by_position
+  std::vector<std::vector<int>> owner;            // per geometry and group (its first vertex)
+  std::vector<std::vector<std::uint8_t>> shared;  // the group is used by another rank too
+};
+VertexOwners FindVertexOwners(const Surfaces& surfaces);
+
+// Distributed runs: sample_mask selecting this rank's samples in the gathered scene: its
+// triangles, or the vertex groups it owns (`owners`, per vertex), so that nothing is measured
+// twice.
+std::vector<std::vector<std::uint8_t>> OwnSampleMask(const Surfaces& surfaces, bool per_cell,
+                                                     const VertexOwners& owners);
+
+// Distributed runs, per vertex, collective: adds to `result` the points of this rank's pieces
+// whose group another rank measured, with that rank's values.
+void ShareVertexResults(const Surfaces& surfaces, const VertexOwners& owners, const Distribution& distribution,
+                        pierce::analysis::ThicknessResult& result);
+
+// Distributed runs, collective: "samples measured per rank: a + b = n" (per vertex, a group of
+// coincident vertices is one sample), for the run report.
+std::string DescribeSampleSplit(const pierce::analysis::ThicknessResult& result, bool per_cell,
+                                const VertexOwners& owners, const Distribution& distribution);
+
+// Distributed runs, collective: the per-solid statistics of every rank's samples as attached to
+// its surfaces (AttachThickness), on rank 0 (empty elsewhere). Per vertex, points of one solid at
+// the same position count once (two ranks share the points along their cut).
+std::vector<pierce::analysis::SolidThickness> GatherThicknessStatistics(
+  const Surfaces& surfaces, bool per_cell, const pierce::analysis::ThicknessOptions& options,
+  const Distribution& distribution);
 
 }  // namespace pierce_vtk

@@ -10,6 +10,7 @@
 #include <vtkObjectFactory.h>
 #include <vtkTable.h>
 
+#include "PierceVTKDistributed.h"
 #include "PierceVTKOverlaps.h"
 #include "PierceVTKProgress.h"
 #include "PierceVTKSurfaces.h"
@@ -21,6 +22,7 @@ vtkPierceOverlaps::vtkPierceOverlaps()
   , Tolerance(0.0)
   , RaysPerAxis(128)
   , EpsilonRel(1e-5)
+  , MaxReplicatedMB(4096.0)
 {
   this->SetNumberOfInputPorts(1);
   this->SetNumberOfOutputPorts(2);
@@ -56,9 +58,11 @@ int vtkPierceOverlaps::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
+  const pierce_vtk::Distribution distribution;
+  pierce_vtk::StageTimer timer;
   pierce_vtk::Surfaces surfaces;
-  std::string error;
-  if (!pierce_vtk::ExtractSurfaces(input, surfaces, error))
+  std::string error, info;
+  if (!distribution.ExtractSurfaces(input, this->MaxReplicatedMB, false, surfaces, error, info))
   {
     vtkErrorMacro(<< error);
     return 0;
@@ -74,26 +78,41 @@ int vtkPierceOverlaps::RequestData(
   settings.rays_per_axis = this->RaysPerAxis;
   settings.epsilon_rel = this->EpsilonRel;
 
+  timer.Stage("gather");
+  // Every rank analyses the whole scene (the coplanar pairs and the ray grid are global); each
+  // keeps its own triangles' arrays, rank 0 the table.
   pierce_vtk::ProgressBridge progress(this);
   pierce_vtk::OverlapResults results;
+  bool ok = true;
+  bool completed = true;
   try
   {
-    if (!pierce_vtk::RunOverlaps(surfaces.scene, settings, progress, results))
-    {
-      return 1; // aborted: the executive hands out empty outputs
-    }
+    completed = pierce_vtk::RunOverlaps(surfaces.scene, settings, progress, results);
+    timer.Stage("analysis");
   }
   catch (const std::exception& e)
   {
-    vtkErrorMacro(<< e.what());
+    error = e.what();
+    ok = false;
+  }
+  if (!distribution.AllTrue(ok))
+  {
+    vtkErrorMacro(<< (ok ? std::string("the analysis failed on another rank") : error));
     return 0;
+  }
+  if (!distribution.AllTrue(completed))
+  {
+    return 1; // aborted: the executive hands out empty outputs
   }
   pierce_vtk::AttachOverlaps(results, surfaces);
   vtkDataObject* output = vtkDataObject::GetData(outputVector, 0);
   pierce_vtk::StoreSurfaces(surfaces, input, output);
   pierce_vtk::AddSolidNames(surfaces, output->GetFieldData());
   pierce_vtk::AddOverlapStatistics(results, output->GetFieldData());
-  pierce_vtk::WriteOverlapTable(results, surfaces, vtkTable::GetData(outputVector, 1));
+  vtkTable* table = vtkTable::GetData(outputVector, 1);
+  pierce_vtk::WriteOverlapTable(results, surfaces, table);
+  distribution.KeepTableOnRoot(table);
+  pierce_vtk::ReportDistributedRun("Pierce Overlaps", distribution, info, timer);
   return 1;
 }
 
@@ -104,4 +123,5 @@ void vtkPierceOverlaps::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Tolerance: " << this->Tolerance << "\n";
   os << indent << "RaysPerAxis: " << this->RaysPerAxis << "\n";
   os << indent << "EpsilonRel: " << this->EpsilonRel << "\n";
+  os << indent << "MaxReplicatedMB: " << this->MaxReplicatedMB << "\n";
 }

@@ -19,6 +19,10 @@
  * (solid of a coplanar partner, another solid first; -1 none), CoplanarHits, InterferenceHits.
  * Output 1 (vtkTable): one row per solid pair and kind ("interference", "contact", "coplanar")
  * with SolidA, SolidB, NameA, NameB, Count, MaxDepth, Penetration, Area and Where.
+ *
+ * Under MPI every rank gathers the whole surface and runs the analysis on it (the pairs and the
+ * ray grid are global), keeps the arrays of its own piece, and rank 0 the table
+ * (PierceVTKDistributed.h).
  */
 #ifndef vtkPierceOverlaps_h
 #define vtkPierceOverlaps_h
@@ -70,6 +74,16 @@ public:
   vtkGetMacro(EpsilonRel, double);
   ///@}
 
+  ///@{
+  /**
+   * Under MPI (pvserver, pvbatch), every rank holds the whole surface: refuse, with an error
+   * naming the size, when it would take more than this many MB per rank. <= 0: no limit.
+   * Default 4096.
+   */
+  vtkSetMacro(MaxReplicatedMB, double);
+  vtkGetMacro(MaxReplicatedMB, double);
+  ///@}
+
   /**
    * Output 1, the solid-pair table.
    */
@@ -88,6 +102,7 @@ protected:
   double Tolerance;
   int RaysPerAxis;
   double EpsilonRel;
+  double MaxReplicatedMB;
 
 private:
   vtkPierceOverlaps(const vtkPierceOverlaps&) = delete;

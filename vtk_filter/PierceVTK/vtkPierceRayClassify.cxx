@@ -12,6 +12,7 @@
 #include <vtkPolyData.h>
 #include <vtkTable.h>
 
+#include "PierceVTKDistributed.h"
 #include "PierceVTKPartitions.h"
 #include "PierceVTKProgress.h"
 #include "PierceVTKRays.h"
@@ -26,6 +27,7 @@ vtkPierceRayClassify::vtkPierceRayClassify()
   , MaxLength(0.0)
   , IncludeGaps(false)
   , InconsistentRays(0)
+  , MaxReplicatedMB(4096.0)
 {
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(2);
@@ -71,9 +73,12 @@ int vtkPierceRayClassify::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   this->InconsistentRays = 0;
+  const pierce_vtk::Distribution distribution;
+  pierce_vtk::StageTimer timer;
   pierce_vtk::Surfaces surfaces;
-  std::string error;
-  if (!pierce_vtk::ExtractSurfaces(vtkDataObject::GetData(inputVector[0], 0), surfaces, error, true))
+  std::string error, info;
+  if (!distribution.ExtractSurfaces(
+        vtkDataObject::GetData(inputVector[0], 0), this->MaxReplicatedMB, true, surfaces, error, info))
   {
     vtkErrorMacro(<< error);
     return 0;
@@ -83,20 +88,39 @@ int vtkPierceRayClassify::RequestData(
     vtkWarningMacro(<< warning);
   }
 
+  timer.Stage("gather");
+  // The rays stay where they are: each rank shoots its own (not its ghosts).
   vtkDataSet* rayInput = vtkDataSet::GetData(inputVector[1], 0);
   vtkDataArray* directions = nullptr;
-  if (this->UseDirectionArray && rayInput)
+  bool ok = true;
+  if (this->UseDirectionArray && rayInput && rayInput->GetNumberOfPoints() > 0)
   {
     const std::string name = this->DirectionArrayName ? this->DirectionArrayName : "";
     directions = rayInput->GetPointData()->GetArray(name.c_str());
     if (!directions)
     {
-      vtkErrorMacro(<< "the ray input has no point array '" << name << "' for the ray directions");
-      return 0;
+      error = "the ray input has no point array '" + name + "' for the ray directions";
+      ok = false;
     }
   }
+  vtkIdType rayElements = 0;
+  if (rayInput)
+  {
+    vtkPolyData* rayLines = vtkPolyData::SafeDownCast(rayInput);
+    rayElements = rayLines && rayLines->GetNumberOfLines() > 0 ? rayLines->GetNumberOfCells()
+                                                               : rayInput->GetNumberOfPoints();
+  }
+  const vtkIdType rayIdOffset = distribution.ExclusiveSum(rayElements);
   pierce_vtk::RayInput rays;
-  if (!pierce_vtk::ExtractRays(rayInput, this->RayDirection, directions, this->MaxLength, rays, error))
+  ok = ok &&
+    pierce_vtk::ExtractRays(rayInput, this->RayDirection, directions, this->MaxLength, rays, error, rayIdOffset,
+      surfaces.distributed);
+  if (surfaces.distributed && !distribution.AllTrue(ok))
+  {
+    vtkErrorMacro(<< (ok ? std::string("another rank could not read its rays") : error));
+    return 0;
+  }
+  if (!ok)
   {
     vtkErrorMacro(<< error);
     return 0;
@@ -108,7 +132,9 @@ int vtkPierceRayClassify::RequestData(
 
   pierce_vtk::ProgressBridge progress(this);
   pierce_vtk::ClassifiedRays classified;
-  if (!pierce_vtk::ClassifyRays(surfaces.scene, rays.rays, progress, classified))
+  const bool completed = pierce_vtk::ClassifyRays(surfaces.scene, rays.rays, progress, classified);
+  timer.Stage("BVH build and trace");
+  if (!distribution.AllTrue(completed))
   {
     return 1; // aborted: the executive hands out empty outputs
   }
@@ -119,8 +145,11 @@ int vtkPierceRayClassify::RequestData(
                     << " rays crossed an open or non-manifold solid (an entry without exit or an exit "
                        "without entry); those crossings claim nothing");
   }
-  pierce_vtk::WritePartitions(classified, rays, surfaces, this->IncludeGaps,
-    vtkPolyData::GetData(outputVector, 0), vtkTable::GetData(outputVector, 1));
+  vtkTable* table = vtkTable::GetData(outputVector, 1);
+  pierce_vtk::WritePartitions(
+    classified, rays, surfaces, this->IncludeGaps, vtkPolyData::GetData(outputVector, 0), table);
+  distribution.GatherTableRows(table);
+  pierce_vtk::ReportDistributedRun("Pierce Ray Classify", distribution, info, timer);
   return 1;
 }
 
@@ -135,4 +164,5 @@ void vtkPierceRayClassify::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxLength: " << this->MaxLength << "\n";
   os << indent << "IncludeGaps: " << this->IncludeGaps << "\n";
   os << indent << "InconsistentRays: " << this->InconsistentRays << "\n";
+  os << indent << "MaxReplicatedMB: " << this->MaxReplicatedMB << "\n";
 }

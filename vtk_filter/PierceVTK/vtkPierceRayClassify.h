@@ -20,6 +20,10 @@
  * Touching solids give adjacent partitions with no gap and no overlap (exact kernels, hits at
  * equal t applied together). Open solids: an entry without exit claims nothing; such rays are
  * counted in a warning.
+ *
+ * Under MPI every rank gathers the whole surface and shoots the rays of its own piece of the ray
+ * input (ghost points and cells skipped); RayId counts the ray inputs of the ranks before it
+ * first. The table is reduced to rank 0 (PierceVTKDistributed.h).
  */
 #ifndef vtkPierceRayClassify_h
 #define vtkPierceRayClassify_h
@@ -43,6 +47,16 @@ public:
    */
   void SetRaysConnection(vtkAlgorithmOutput* output);
   void SetRaysData(vtkDataObject* rays);
+
+  ///@{
+  /**
+   * Under MPI (pvserver, pvbatch), every rank holds the whole surface: refuse, with an error
+   * naming the size, when it would take more than this many MB per rank. <= 0: no limit.
+   * Default 4096.
+   */
+  vtkSetMacro(MaxReplicatedMB, double);
+  vtkGetMacro(MaxReplicatedMB, double);
+  ///@}
 
   /**
    * Output 1, the table of partitions.
@@ -108,6 +122,7 @@ protected:
   double MaxLength;
   bool IncludeGaps;
   vtkIdType InconsistentRays;
+  double MaxReplicatedMB;
 
 private:
   vtkPierceRayClassify(const vtkPierceRayClassify&) = delete;

@@ -10,6 +10,7 @@
 #include <vtkObjectFactory.h>
 #include <vtkTable.h>
 
+#include "PierceVTKDistributed.h"
 #include "PierceVTKProgress.h"
 #include "PierceVTKSurfaces.h"
 #include "PierceVTKThickness.h"
@@ -25,6 +26,7 @@ vtkPierceThickness::vtkPierceThickness()
   , ConeRays(30)
   , ConeAngle(120.0)
   , ConeAggregate(SHAPIRA)
+  , MaxReplicatedMB(4096.0)
 {
   this->SetNumberOfInputPorts(1);
   this->SetNumberOfOutputPorts(2);
@@ -60,9 +62,11 @@ int vtkPierceThickness::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
+  const pierce_vtk::Distribution distribution;
+  pierce_vtk::StageTimer timer;
   pierce_vtk::Surfaces surfaces;
-  std::string error;
-  if (!pierce_vtk::ExtractSurfaces(input, surfaces, error))
+  std::string error, info;
+  if (!distribution.ExtractSurfaces(input, this->MaxReplicatedMB, false, surfaces, error, info))
   {
     vtkErrorMacro(<< error);
     return 0;
@@ -71,6 +75,7 @@ int vtkPierceThickness::RequestData(
   {
     vtkWarningMacro(<< warning);
   }
+  timer.Stage("gather");
 
   pierce_vtk::ThicknessSettings settings;
   settings.method = this->Method;
@@ -80,30 +85,60 @@ int vtkPierceThickness::RequestData(
   settings.cone_rays = this->ConeRays;
   settings.cone_angle = this->ConeAngle;
   settings.cone_aggregate = this->ConeAggregate;
+  pierce::analysis::ThicknessOptions options = pierce_vtk::ToThicknessOptions(settings);
+  const bool perCell = this->SampleAt == CELLS;
+  pierce_vtk::VertexOwners owners;
+  if (surfaces.distributed)
+  {
+    if (!perCell)
+    {
+      owners = pierce_vtk::FindVertexOwners(surfaces);
+    }
+    options.sample_mask = pierce_vtk::OwnSampleMask(surfaces, perCell, owners);
+  }
 
   pierce_vtk::ProgressBridge progress(this, 0.05, 1.0);
   pierce::analysis::ThicknessResult result;
+  bool ok = true;
   try
   {
     const pierce::Accel accel(surfaces.scene);
+    timer.Stage("BVH build");
     this->UpdateProgress(0.05);
-    result = pierce::analysis::compute_thickness(
-      accel, pierce_vtk::ToThicknessOptions(settings), progress.Callback());
+    result = pierce::analysis::compute_thickness(accel, options, progress.Callback());
+    timer.Stage("trace");
   }
   catch (const std::exception& e)
   {
-    vtkErrorMacro(<< e.what());
+    error = e.what();
+    ok = false;
+  }
+  if (!distribution.AllTrue(ok))
+  {
+    vtkErrorMacro(<< (ok ? std::string("the analysis failed on another rank") : error));
     return 0;
   }
-  if (!result.completed || progress.CheckAbort())
+  if (!distribution.AllTrue(result.completed && !progress.CheckAbort()))
   {
     return 1; // aborted: the executive hands out empty outputs
+  }
+  if (surfaces.distributed)
+  {
+    info += "; " + pierce_vtk::DescribeSampleSplit(result, perCell, owners, distribution);
+    if (!perCell)
+    {
+      pierce_vtk::ShareVertexResults(surfaces, owners, distribution, result);
+    }
   }
   pierce_vtk::AttachThickness(result, surfaces);
   vtkDataObject* output = vtkDataObject::GetData(outputVector, 0);
   pierce_vtk::StoreSurfaces(surfaces, input, output);
   pierce_vtk::AddSolidNames(surfaces, output->GetFieldData());
-  pierce_vtk::WriteThicknessTable(result, vtkTable::GetData(outputVector, 1));
+  const std::vector<pierce::analysis::SolidThickness> statistics = surfaces.distributed
+    ? pierce_vtk::GatherThicknessStatistics(surfaces, perCell, options, distribution)
+    : result.solids;
+  pierce_vtk::WriteThicknessTable(statistics, options.percentiles, vtkTable::GetData(outputVector, 1));
+  pierce_vtk::ReportDistributedRun("Pierce Thickness", distribution, info, timer);
   return 1;
 }
 
@@ -117,4 +152,5 @@ void vtkPierceThickness::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ConeRays: " << this->ConeRays << "\n";
   os << indent << "ConeAngle: " << this->ConeAngle << "\n";
   os << indent << "ConeAggregate: " << this->ConeAggregate << "\n";
+  os << indent << "MaxReplicatedMB: " << this->MaxReplicatedMB << "\n";
 }

@@ -16,6 +16,10 @@
  * started in; touching neighbours and coincident faces of other solids do not change it), Cone
  * (shape-diameter function over ConeRays rays in a ConeAngle cone), Sphere (largest inscribed
  * ball touching the point). Values equal `pierce thickness` on the same triangles.
+ *
+ * Under MPI every rank gathers the whole surface, measures the samples of its own piece and
+ * keeps its piece (without ghost cells) as output; the statistics are reduced to rank 0. The
+ * values are those of a serial run (PierceVTKDistributed.h).
  */
 #ifndef vtkPierceThickness_h
 #define vtkPierceThickness_h
@@ -97,8 +101,18 @@ public:
   vtkGetMacro(ConeAggregate, int);
   ///@}
 
+  ///@{
   /**
-   * Output 1, the per-solid statistics.
+   * Under MPI (pvserver, pvbatch), every rank holds the whole surface: refuse, with an error
+   * naming the size, when it would take more than this many MB per rank. <= 0: no limit.
+   * Default 4096.
+   */
+  vtkSetMacro(MaxReplicatedMB, double);
+  vtkGetMacro(MaxReplicatedMB, double);
+  ///@}
+
+  /**
+   * Output 1, the per-solid statistics (under MPI: on rank 0, over all ranks' samples).
    */
   vtkTable* GetStatisticsOutput();
 
@@ -118,6 +132,7 @@ protected:
   int ConeRays;
   double ConeAngle;
   int ConeAggregate;
+  double MaxReplicatedMB;
 
 private:
   vtkPierceThickness(const vtkPierceThickness&) = delete;

@@ -16,6 +16,7 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkStringArray.h>
 
 #include "pierce/io/cad_io.h"
@@ -100,12 +101,19 @@ int vtkPierceCADReader::RequestData(
     vtkWarningMacro(<< this->FileName << ": " << warning);
   }
 
+  // Under MPI every rank asks for its piece: piece 0 gets the whole model, the others the same
+  // blocks empty (a filter such as D3 then spreads it), so no triangle is there twice.
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    : 0;
   vtkMultiBlockDataSet* output = vtkMultiBlockDataSet::GetData(outputVector, 0);
   output->SetNumberOfBlocks(static_cast<unsigned int>(model.solids.size()));
   for (std::size_t i = 0; i < model.solids.size(); ++i)
   {
     const auto block = static_cast<unsigned int>(i);
-    output->SetBlock(block, ToPolyData(model.solids[i], static_cast<int>(i)));
+    output->SetBlock(block,
+      piece == 0 ? ToPolyData(model.solids[i], static_cast<int>(i)) : vtkSmartPointer<vtkPolyData>::New());
     output->GetMetaData(block)->Set(vtkCompositeDataSet::NAME(), model.solids[i].name.c_str());
   }
   auto units = vtkSmartPointer<vtkStringArray>::New();

@@ -6,7 +6,8 @@
  * assembly path (e.g. "bracket_assy/bolt"), triangles wound outward, and a cell array SolidId.
  * Field data: Units ("mm" for STEP and IGES, "model units" for BREP) and LinearDeflection (the
  * tessellation tolerance used). Unreadable files are reported through the error mechanism;
- * parts that were skipped or repaired are reported as warnings.
+ * parts that were skipped or repaired are reported as warnings. Asked for piece n > 0 (under MPI),
+ * it outputs the same blocks empty: the model is on piece 0 once, for D3 to spread.
  */
 #ifndef vtkPierceCADReader_h
 #define vtkPierceCADReader_h

@@ -74,6 +74,17 @@ void check_options(const Accel& accel, const ThicknessOptions& o) {
   for (auto s : o.solids)
     if (s >= accel.scene().geometries().size())
       throw std::invalid_argument("thickness: no solid with id " + std::to_string(s));
+  if (!o.sample_mask.empty()) {
+    const auto& geos = accel.scene().geometries();
+    if (o.sample_mask.size() != geos.size())
+      throw std::invalid_argument("thickness: the sample mask needs one entry per solid");
+    for (std::size_t g = 0; g < geos.size(); ++g) {
+      const std::size_t n = o.per == SampleAt::vertex ? geos[g].vertices.size() : geos[g].triangles.size();
+      if (!o.sample_mask[g].empty() && o.sample_mask[g].size() != n)
+        throw std::invalid_argument("thickness: the sample mask of solid " + std::to_string(g) +
+                                    " does not match its element count");
+    }
+  }
 }
 
 }  // namespace
@@ -174,8 +185,21 @@ ThicknessResult compute_thickness(const Accel& accel, const ThicknessOptions& op
       res.thin.push_back(0);
       res.status.push_back(n == Vec3d{} ? ThicknessStatus::no_normal : ThicknessStatus::ok);
     };
+    const bool masked = !opts.sample_mask.empty();
+    const std::vector<std::uint8_t>* mask = masked ? &opts.sample_mask[g] : nullptr;
+    auto selected = [&](std::uint32_t e) { return !masked || (!mask->empty() && (*mask)[e] != 0); };
     if (opts.per == SampleAt::vertex) {
       const auto normals = vertex_normals(geo, weld);
+      // With a mask, a group of coincident vertices is measured (at its first vertex) when any
+      // of its vertices is selected.
+      std::vector<std::uint8_t> group_wanted;
+      std::vector<std::uint32_t> out_of;  // result index of each pushed vertex
+      if (masked) {
+        group_wanted.assign(geo.vertices.size(), 0);
+        for (std::uint32_t v = 0; v < geo.vertices.size(); ++v)
+          if (selected(v)) group_wanted[weld[v]] = 1;
+        out_of.assign(geo.vertices.size(), kInvalidId);
+      }
       // Triangles around each welded vertex, for the sphere method's exclusions.
       std::vector<std::vector<std::uint32_t>> around;
       if (opts.method == ThicknessMethod::sphere) {
@@ -187,11 +211,13 @@ ThicknessResult compute_thickness(const Accel& accel, const ThicknessOptions& op
           }
       }
       for (std::uint32_t v = 0; v < geo.vertices.size(); ++v) {
+        if (masked && !selected(v) && !(weld[v] == v && group_wanted[v])) continue;
         push(v, geo.vertices[v], normals[v]);
         const std::uint32_t out = std::uint32_t(res.size() - 1);
+        if (masked) out_of[v] = out;
         if (normals[v] == Vec3d{}) continue;
         if (weld[v] != v) {
-          set.copies.emplace_back(out, std::uint32_t(base + weld[v]));
+          set.copies.emplace_back(out, masked ? out_of[weld[v]] : std::uint32_t(base + weld[v]));
           continue;
         }
         Sample s{g, out, geo.vertices[v], normals[v] * -1.0, std::uint32_t(set.exclude.size()), 0};
@@ -204,6 +230,7 @@ ThicknessResult compute_thickness(const Accel& accel, const ThicknessOptions& op
       // is measured like the first one, as vertex normals count it.
       const auto first = first_occurrence(geo, weld);
       for (std::uint32_t t = 0; t < geo.triangles.size(); ++t) {
+        if (!selected(t)) continue;
         const Tri& tri = geo.triangles[t];
         const Vec3d c = (geo.vertices[tri[0]] + geo.vertices[tri[1]] + geo.vertices[tri[2]]) * (1.0 / 3.0);
         const Vec3d n = geo.degenerate[t] ? Vec3d{} : face_normal(geo, first[t]);

@@ -60,6 +60,13 @@ struct ThicknessOptions {
   HemisphereSet offset_set = HemisphereSet::center;
   std::vector<std::uint32_t> solids;      // geometries to sample (all when empty); the others
                                           // still take part as neighbours
+  // Elements to sample (all of each sampled solid when empty): when given, one entry per
+  // geometry of the scene, each empty (none) or of that geometry's vertex (per vertex) or
+  // triangle (per face) count; element e of geometry g is measured when sample_mask[g][e] != 0.
+  // The result lists the selected elements (and, per vertex, the first of each group of
+  // coincident vertices a selected one copies its value from); the statistics cover those.
+  // Used to split the samples of one scene between processes.
+  std::vector<std::vector<std::uint8_t>> sample_mask;
   std::vector<double> percentiles = kDefaultPercentiles;
   int histogram_bins = 20;
 };
