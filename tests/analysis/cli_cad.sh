@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `pierce info`, `thickness` and `overlaps` on a STEP assembly (plate, two touching blocks, a
 # clash sunk 0.5 mm into the plate) and a BREP hollow sphere, both written with OpenCASCADE.
-source "$(dirname "$0")/cli_lib.sh"
+source "$(dirname "$0")/../cli/lib.sh"
+MAKE_MODELS=${2:?usage: $0 PIERCE_BINARY MAKE_MODELS_BINARY}
 "$MAKE_MODELS" "$WORK" || { echo "FAIL: make_models"; exit 1; }
 STEP=$WORK/assembly.step
 

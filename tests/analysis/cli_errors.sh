@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Errors of the analysis commands: clear message, non-zero exit, no output file touched.
-source "$(dirname "$0")/cli_lib.sh"
+source "$(dirname "$0")/../cli/lib.sh"
+MAKE_MODELS=${2:?usage: $0 PIERCE_BINARY MAKE_MODELS_BINARY}
 box_obj a 0 0 0 1 1 1 0 >"$WORK/box.obj"
 
 expect_error "missing model" "no such file" -- "$PIERCE" thickness "$WORK/nope.stl" -o "$WORK/x.csv"

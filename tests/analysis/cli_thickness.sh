@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `pierce thickness` on meshes: CSV columns and values for two boxes sharing a face, the thin
 # flag, an open box (nan where rays escape), per-vertex rows, JSON statistics, VTP arrays.
-source "$(dirname "$0")/cli_lib.sh"
+source "$(dirname "$0")/../cli/lib.sh"
+MAKE_MODELS=${2:?usage: $0 PIERCE_BINARY MAKE_MODELS_BINARY}
 
 { box_obj a 0 0 0 1 1 1 0; box_obj b 1 0 0 3 1 1 8; } >"$WORK/boxes.obj"
 run "thickness csv" "$PIERCE" thickness "$WORK/boxes.obj" --per face --min 1.5 -o "$WORK/t.csv"

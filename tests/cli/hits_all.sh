@@ -2,6 +2,7 @@
 # `--kernel all` on the touching plates: every exact kernel reports zero disagreements, the epsilon
 # baseline reports missed hits, and the exit code is 0. With --out the consensus CSV is written.
 source "$(dirname "$0")/lib.sh"
+SAMPLES=${2:?usage: $0 PIERCE_BINARY SAMPLES_DIR}
 PLATES="$SAMPLES/plates.obj"
 N=32
 PLATE_COUNT=$(grep -c '^o ' "$PLATES")

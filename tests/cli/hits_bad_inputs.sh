@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Bad models, ray specs, kernels and arguments: non-zero exit and a message naming the problem.
 source "$(dirname "$0")/lib.sh"
+SAMPLES=${2:?usage: $0 PIERCE_BINARY SAMPLES_DIR}
 PLATES="$SAMPLES/plates.obj"
 GRID="grid:axis=z,n=4"
 

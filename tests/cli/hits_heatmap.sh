@@ -3,6 +3,7 @@
 # work, one ray per pixel; a PNG of the asked size that shows something, its statistics printed,
 # more work for more hits, and the same refusals as every other output.
 source "$(dirname "$0")/lib.sh"
+SAMPLES=${2:?usage: $0 PIERCE_BINARY SAMPLES_DIR}
 PLATES="$SAMPLES/plates.obj"
 
 png_size() {

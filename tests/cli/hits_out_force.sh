@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # --out never overwrites an existing file without --force, and leaves no temporary files.
 source "$(dirname "$0")/lib.sh"
+SAMPLES=${2:?usage: $0 PIERCE_BINARY SAMPLES_DIR}
 PLATES="$SAMPLES/plates.obj"
 RUN=("$PIERCE" hits "$PLATES" --rays grid:axis=z,n=4 --kernel filter)
 

@@ -4,6 +4,7 @@
 # (geom, prim), in the total order (t ascending, ties by geom then prim). The plate count comes
 # from the file (one `o` group per plate), not from a stored answer.
 source "$(dirname "$0")/lib.sh"
+SAMPLES=${2:?usage: $0 PIERCE_BINARY SAMPLES_DIR}
 PLATES="$SAMPLES/plates.obj"
 N=32
 PLATE_COUNT=$(grep -c '^o ' "$PLATES")

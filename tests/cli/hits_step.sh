@@ -4,6 +4,7 @@
 # face, z 2..4) and a 2 mm cube sunk 0.5 into it at (6,6) (z 1.5..3.5). All faces are planar, so
 # tessellation is exact and every t below follows from those dimensions.
 source "$(dirname "$0")/lib.sh"
+SAMPLES=${2:?usage: $0 PIERCE_BINARY SAMPLES_DIR}
 STEP="$SAMPLES/plate_assembly.step"
 
 # Rays up from z = -1: through plate and the cube at (1,1); through plate and the sunk cube;

@@ -1,7 +1,8 @@
-# Shared by the CLI test scripts: usage `script.sh PIERCE SAMPLES_DIR`.
+# The one library of the CLI test scripts (tests/cli, tests/analysis): usage `script.sh PIERCE ...`;
+# each script reads its further arguments itself (a samples directory, a model builder).
 set -u
-PIERCE=${1:?usage: $0 PIERCE_BINARY SAMPLES_DIR}
-SAMPLES=${2:?usage: $0 PIERCE_BINARY SAMPLES_DIR}
+PIERCE=${1:?usage: $0 PIERCE_BINARY ...}
+PY=/usr/bin/python3
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/pierce_cli.XXXXXX")
 trap 'rm -rf "$WORK"' EXIT
 FAILURES=0
@@ -11,8 +12,7 @@ fail() {
   FAILURES=$((FAILURES + 1))
 }
 
-# expect_error DESCRIPTION EXPECTED_TEXT -- COMMAND...: the command must exit non-zero and print
-# EXPECTED_TEXT on stderr.
+# expect_error DESCRIPTION EXPECTED_TEXT -- COMMAND...: non-zero exit and EXPECTED_TEXT on stderr.
 expect_error() {
   local what=$1 text=$2
   shift 3
@@ -23,6 +23,32 @@ expect_error() {
   elif ! grep -qF -- "$text" "$WORK/stderr"; then
     fail "$what: stderr lacks '$text': $(cat "$WORK/stderr")"
   fi
+}
+
+# run DESCRIPTION COMMAND...: must exit 0.
+run() {
+  local what=$1
+  shift
+  "$@" >"$WORK/stdout" 2>"$WORK/stderr" || fail "$what: exit code $?: $(cat "$WORK/stderr")"
+}
+
+# box_obj NAME X0 Y0 Z0 X1 Y1 Z1 BASE: an OBJ object, closed, outward winding; BASE = vertices
+# already written to the file.
+box_obj() {
+  local name=$1 x0=$2 y0=$3 z0=$4 x1=$5 y1=$6 z1=$7 b=$8
+  echo "o $name"
+  for i in 0 1 2 3 4 5 6 7; do
+    local x=$x0 y=$y0 z=$z0
+    [ $((i & 1)) -ne 0 ] && x=$x1
+    [ $((i & 2)) -ne 0 ] && y=$y1
+    [ $((i & 4)) -ne 0 ] && z=$z1
+    echo "v $x $y $z"
+  done
+  # -x, +x, -y, +y, -z, +z (two triangles each), as pierce::gen::box.
+  for t in "0 4 6" "0 6 2" "1 3 7" "1 7 5" "0 1 5" "0 5 4" "2 6 7" "2 7 3" "0 2 3" "0 3 1" "4 5 7" "4 7 6"; do
+    set -- $t
+    echo "f $((b + $1 + 1)) $((b + $2 + 1)) $((b + $3 + 1))"
+  done
 }
 
 finish() {

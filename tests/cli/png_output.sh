@@ -2,6 +2,7 @@
 # `pierce thickness --png` and `pierce overlaps --png` on the STEP sample: a PNG of the asked size
 # that shows something, never written over an existing file without --force.
 source "$(dirname "$0")/lib.sh"
+SAMPLES=${2:?usage: $0 PIERCE_BINARY SAMPLES_DIR}
 STEP="$SAMPLES/plate_assembly.step"
 
 # png_info FILE: "WIDTH HEIGHT" from the IHDR chunk, or nothing if the signature is wrong.
