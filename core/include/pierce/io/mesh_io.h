@@ -9,7 +9,10 @@
 //
 // The readers are written by hand rather than taken from OpenMesh: OpenMesh's halfedge meshes drop
 // non-manifold and duplicated faces, and its STL reader may skip degenerate ones, which would shift
-// every later prim.
+// every later prim. For the same reason Pierce does not use OpenMesh at all: the topology it needs
+// (welded vertices, edge incidence, vertex normals; analysis/mesh_topology.h) must work on exactly
+// the meshes a halfedge structure cannot hold (non-manifold edges, duplicated and degenerate faces,
+// triangle soups), so it is computed on indexed triangles, and the build does not look for OpenMesh.
 #include <string>
 #include <vector>
 
