@@ -1,10 +1,6 @@
 // pierce.thickness: wall-thickness maps (ray, cone, sphere), results as zero-copy numpy views.
 #include <pybind11/stl.h>
 
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-
-#include <atomic>
 #include <limits>
 #include <optional>
 
@@ -175,24 +171,12 @@ void bind_thickness(pyb::module_& m) {
             throw pyb::value_error("geometry id " + std::to_string(v) + " is not in the scene");
           geom[i] = static_cast<std::uint32_t>(v);
         }
-        std::vector<double> out(rays.size(), std::numeric_limits<double>::quiet_NaN());
+        std::vector<double> out;
         PyScene::Use use(s);
         run_with_progress(progress, cancel, rays.size(), [&](ProgressState& st) {
-          const Accel& accel = s.accel();
-          const double tie = tie_distance(s.scene, tie_tolerance_rel);
-          KernelOptions ko;
-          ko.order.tie = TieOrder::leave_before_enter;  // what ray_exit_distance requires
-          tbb::enumerable_thread_specific<HitIterator> iters([&] { return HitIterator(accel, kind, ko); });
-          std::atomic<std::size_t> done{0};
-          tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 256), [&](const auto& range) {
-            if (st.cancelled()) return;
-            HitIterator& it = iters.local();
-            for (std::size_t i = range.begin(); i != range.end(); ++i) {
-              const Vec3d dir = rays[i].dir * (1.0 / length(rays[i].dir));
-              out[i] = ray_exit_distance(it, geom[i], rays[i].org, dir, max_distance, tie);
-            }
-            st.report(done.fetch_add(range.size()) + range.size());
-          });
+          out = thickness_along(s.accel(), geom, rays, max_distance, tie_tolerance_rel, kind,
+                                [&](std::size_t done, std::size_t total) { return st.report(done, total); })
+                    .thickness;
         });
         pyb::array_t<double> a(static_cast<pyb::ssize_t>(out.size()));
         std::copy(out.begin(), out.end(), a.mutable_data());

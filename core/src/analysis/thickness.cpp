@@ -155,6 +155,27 @@ double ray_exit_distance(HitIterator& it, std::uint32_t geom, Vec3d point, Vec3d
   return kNaN;
 }
 
+ThicknessAlong thickness_along(const Accel& accel, const std::vector<std::uint32_t>& geoms,
+                               const std::vector<Ray>& rays, double max_distance, double tie_tolerance_rel,
+                               KernelKind kernel, const Progress& progress) {
+  if (!is_exact(kernel)) throw std::invalid_argument("thickness_along: kernel must be exact");
+  if (geoms.size() != rays.size()) throw std::invalid_argument("thickness_along: one geometry id per ray");
+  for (const std::uint32_t g : geoms)
+    if (g >= accel.scene().geometries().size())
+      throw std::invalid_argument("geometry id " + std::to_string(g) + " is not in the scene");
+  ThicknessAlong out;
+  out.thickness.assign(rays.size(), kNaN);
+  const double tie = tie_distance(accel.scene(), tie_tolerance_rel);
+  KernelOptions ko;
+  ko.order.tie = TieOrder::leave_before_enter;  // what ray_exit_distance requires
+  tbb::enumerable_thread_specific<HitIterator> iters([&] { return HitIterator(accel, kernel, ko); });
+  out.completed = parallel_for_items(rays.size(), 256, iters, progress, [&](HitIterator& it, std::size_t i) {
+    const Vec3d dir = rays[i].dir * (1.0 / length(rays[i].dir));
+    out.thickness[i] = ray_exit_distance(it, geoms[i], rays[i].org, dir, max_distance, tie);
+  });
+  return out;
+}
+
 ThicknessResult compute_thickness(const Accel& accel, const ThicknessOptions& opts, const Progress& progress) {
   check_options(accel, opts);
   const Scene& scene = accel.scene();

@@ -116,6 +116,19 @@ inline std::string_view status_name(ThicknessStatus s) { return enum_name(s); }
 // `offset`: a safe_offset() for this ray (0 for none); the search starts at max(tie, offset).
 double ray_exit_distance(HitIterator& it, std::uint32_t geom, Vec3d point, Vec3d dir, double max_distance,
                          double tie, double offset = 0);
+// Ray thickness at given surface points: for each i, the distance from rays[i].org along
+// rays[i].dir (normalised here) to where the ray leaves solid geoms[i] (ray_exit_distance), NaN
+// if it does not within max_distance. In parallel (parallel_for_items), one value per ray in ray
+// order; `completed` is false if progress cancelled. Throws std::invalid_argument for a non-exact
+// kernel, a geometry id not in the scene, or sizes that differ.
+struct ThicknessAlong {
+  std::vector<double> thickness;
+  bool completed = true;
+};
+ThicknessAlong thickness_along(const Accel& accel, const std::vector<std::uint32_t>& geoms,
+                               const std::vector<Ray>& rays, double max_distance, double tie_tolerance_rel = 1e-6,
+                               KernelKind kernel = KernelKind::queue, const Progress& progress = {});
+
 // Whether compute_thickness uses origin offsets with these options.
 bool uses_origin_offsets(const ThicknessOptions& opts);
 
