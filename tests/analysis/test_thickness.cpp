@@ -17,6 +17,8 @@ using analysis::ThicknessMethod;
 using analysis::ThicknessOptions;
 using analysis::ThicknessResult;
 using analysis::ThicknessStatus;
+using analysis::thickness_along;
+using analysis::ThicknessAlong;
 
 // gen::box triangle i lies on the face with outward normal along axis i / 4, side (i / 2) % 2.
 int box_face_axis(std::uint32_t tri) { return int(tri / 4); }
@@ -173,6 +175,32 @@ TEST(BoxThickness, TwoBoxesSharingAFaceEachGetTheirOwnWidth) {
   EXPECT_EQ(r.solids[1].thin, 8u);
   EXPECT_NEAR(r.solids[1].summary.max, 2.0, 1e-6);
   EXPECT_NEAR(r.solids[1].summary.min, 1.0, 1e-6);
+}
+
+// thickness_along: the per-face thickness map's own rays, given from outside, give its values; the
+// direction's length does not matter; bad input is refused.
+TEST(BoxThickness, ThicknessAlongGivenRaysMatchesTheMap) {
+  const std::vector<gen::Mesh> boxes = {gen::box({0, 0, 0}, {1, 1, 1}, "a"), gen::box({1, 0, 0}, {3, 1, 1}, "b")};
+  auto w = make_world(boxes);
+  ThicknessOptions o;
+  o.per = SampleAt::face;
+  const ThicknessResult r = compute_thickness(w->accel, o);
+  std::vector<std::uint32_t> geoms;
+  std::vector<Ray> rays;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    geoms.push_back(r.solid[i]);
+    rays.push_back(Ray{r.point[i], r.normal[i] * -3.0});
+  }
+  const ThicknessAlong along = thickness_along(w->accel, geoms, rays, std::numeric_limits<double>::infinity());
+  ASSERT_TRUE(along.completed);
+  ASSERT_EQ(along.thickness.size(), r.size());
+  for (std::size_t i = 0; i < r.size(); ++i) EXPECT_EQ(along.thickness[i], r.thickness[i]) << i;
+  EXPECT_THROW(thickness_along(w->accel, {0}, rays, 1.0), std::invalid_argument);
+  EXPECT_THROW(thickness_along(w->accel, std::vector<std::uint32_t>(rays.size(), 7), rays, 1.0), std::invalid_argument);
+  EXPECT_THROW(thickness_along(w->accel, geoms, rays, 1.0, 1e-6, KernelKind::epsilon), std::invalid_argument);
+  const ThicknessAlong cancelled =
+      thickness_along(w->accel, geoms, rays, 1.0, 1e-6, KernelKind::queue, [](std::size_t, std::size_t) { return false; });
+  EXPECT_FALSE(cancelled.completed);
 }
 
 TEST(BoxThickness, AllExactKernelsAgreeOnTouchingBoxes) {
