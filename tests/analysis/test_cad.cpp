@@ -9,15 +9,9 @@
 #include <BRep_Builder.hxx>
 #include <IGESControl_Controller.hxx>
 #include <IGESControl_Writer.hxx>
-#include <STEPCAFControl_Writer.hxx>
-#include <TDataStd_Name.hxx>
-#include <TDocStd_Document.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Shell.hxx>
 #include <TopoDS_Solid.hxx>
-#include <XCAFApp_Application.hxx>
-#include <XCAFDoc_DocumentTool.hxx>
-#include <XCAFDoc_ShapeTool.hxx>
 #include <gp_Trsf.hxx>
 
 #include <cmath>
@@ -34,6 +28,7 @@
 #include "pierce/error.h"
 #include "pierce/io/cad_io.h"
 #include "pierce/io/model_io.h"
+#include "step_assembly.h"
 
 namespace pierce::test {
 namespace {
@@ -60,37 +55,11 @@ class TempDirCleanup : public ::testing::Environment {
 };
 [[maybe_unused]] const ::testing::Environment* const kCleanup = ::testing::AddGlobalTestEnvironment(new TempDirCleanup);
 
-TopLoc_Location at(double x, double y, double z) {
-  gp_Trsf t;
-  t.SetTranslation(gp_Vec(x, y, z));
-  return TopLoc_Location(t);
-}
-
-// "plate_assy": a 10 x 10 x 2 plate at the origin; the part "block" (2 x 2 x 2) placed twice on
-// top of it, touching; "clash" (2 x 2 x 2) sunk 0.5 into the plate.
+// The tests' STEP assembly (tests/occt/step_assembly.h): a 10 x 10 x 2 plate at the origin; the part
+// "block" (2 x 2 x 2) placed twice on top of it, touching; "clash" (2 x 2 x 2) sunk 0.5 into the plate.
 std::string write_assembly_step() {
   const std::string path = (temp_dir() / "assembly.step").string();
-  Handle(TDocStd_Document) doc;
-  XCAFApp_Application::GetApplication()->NewDocument("MDTV-XCAF", doc);
-  const Handle(XCAFDoc_ShapeTool) tool = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
-  const TDF_Label assy = tool->NewShape();
-  TDataStd_Name::Set(assy, "plate_assy");
-  const TDF_Label plate = tool->AddShape(BRepPrimAPI_MakeBox(10, 10, 2).Shape(), false);
-  TDataStd_Name::Set(plate, "plate");
-  const TDF_Label block = tool->AddShape(BRepPrimAPI_MakeBox(2, 2, 2).Shape(), false);
-  TDataStd_Name::Set(block, "block");
-  const TDF_Label clash = tool->AddShape(BRepPrimAPI_MakeBox(2, 2, 2).Shape(), false);
-  TDataStd_Name::Set(clash, "clash");
-  tool->AddComponent(assy, plate, TopLoc_Location());
-  tool->AddComponent(assy, block, at(1, 1, 2));
-  tool->AddComponent(assy, block, at(6, 1, 2));
-  tool->AddComponent(assy, clash, at(6, 6, 1.5));
-  tool->UpdateAssemblies();
-  STEPCAFControl_Writer writer;
-  writer.SetNameMode(true);
-  EXPECT_TRUE(writer.Transfer(doc, STEPControl_AsIs));
-  EXPECT_EQ(writer.Write(path.c_str()), IFSelect_RetDone);
-  XCAFApp_Application::GetApplication()->Close(doc);
+  test_models::write_step_assembly(path);
   return path;
 }
 

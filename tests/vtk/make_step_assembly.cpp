@@ -11,7 +11,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    pierce::vtk_test::write_step_assembly(argv[1]);
+    pierce::test_models::write_step_assembly(argv[1]);
   } catch (const std::exception& e) {
     std::cerr << e.what() << "\n";
     return 1;

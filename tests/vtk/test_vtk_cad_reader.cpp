@@ -28,7 +28,7 @@ const std::string& assembly_path() {
     const fs::path dir = fs::temp_directory_path() / ("pierce_vtk_cad_" + std::to_string(::getpid()));
     fs::create_directories(dir);
     const std::string p = (dir / "assembly.step").string();
-    write_step_assembly(p);
+    test_models::write_step_assembly(p);
     return p;
   }();
   return path;

@@ -11,7 +11,7 @@
 
 #include <stdexcept>
 
-namespace pierce::vtk_test {
+namespace pierce::test_models {
 namespace {
 
 TopLoc_Location at(double x, double y, double z) {
@@ -47,4 +47,4 @@ void write_step_assembly(const std::string& path) {
   if (!written) throw std::runtime_error("OpenCASCADE could not write " + path);
 }
 
-}  // namespace pierce::vtk_test
+}  // namespace pierce::test_models
