@@ -240,17 +240,14 @@ int run_overlaps(const OverlapsCli& o) {
   std::fflush(stdout);
   if (!o.png.empty() && !write_png(accel, triangle_overlap_arrays(scene, &cop, &rep), o)) return cancelled();
   std::fflush(stdout);
-  if (format == Format::none) return 0;
-  OutputFile out(o.out, o.force);
-  switch (format) {
-    case Format::vtp: write_vtp_result(out.stream(), scene, triangle_overlap_arrays(scene, &cop, &rep)); break;
-    case Format::csv: write_csv(out.stream(), scene, cop, rep); break;
-    case Format::json: write_json(out.stream(), scene, o, cop, rep); break;
-    case Format::none: break;
-  }
-  if (interrupted()) return cancelled();
-  out.commit();
-  return 0;
+  return write_output(o.out, format, o.force, [&](Format f, std::FILE* out) {
+    switch (f) {
+      case Format::vtp: write_vtp_result(out, scene, triangle_overlap_arrays(scene, &cop, &rep)); break;
+      case Format::csv: write_csv(out, scene, cop, rep); break;
+      case Format::json: write_json(out, scene, o, cop, rep); break;
+      case Format::none: break;
+    }
+  });
 }
 
 }  // namespace

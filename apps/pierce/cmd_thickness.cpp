@@ -233,17 +233,14 @@ int run_thickness(const ThicknessCli& o) {
   std::fflush(stdout);
   if (!o.png.empty() && !write_png(accel, r, o)) return cancelled();
   std::fflush(stdout);
-  if (format == Format::none) return 0;
-  OutputFile out(o.out, o.force);
-  switch (format) {
-    case Format::vtp: write_vtp_result(out.stream(), scene, r); break;
-    case Format::csv: write_csv(out.stream(), scene, r); break;
-    case Format::json: write_json(out.stream(), scene, r, o, opts); break;
-    case Format::none: break;
-  }
-  if (interrupted()) return cancelled();
-  out.commit();
-  return 0;
+  return write_output(o.out, format, o.force, [&](Format f, std::FILE* out) {
+    switch (f) {
+      case Format::vtp: write_vtp_result(out, scene, r); break;
+      case Format::csv: write_csv(out, scene, r); break;
+      case Format::json: write_json(out, scene, r, o, opts); break;
+      case Format::none: break;
+    }
+  });
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "interrupt.h"
+#include "output_file.h"
 #include "progress.h"
 
 namespace pierce::cli {
@@ -16,6 +17,18 @@ namespace pierce::cli {
 // empty path. Throws InputError naming the file for any other extension.
 enum class Format { none, vtp, csv, json };
 Format format_of(const std::string& path);
+
+// Writes -o FILE (format != none) through write(format, stream); the file appears only when
+// complete and not after Ctrl-C. Returns the command's exit code (0, or kExitCancelled).
+template <class Write>
+int write_output(const std::string& path, Format format, bool force, Write write) {
+  if (format == Format::none) return 0;
+  OutputFile out(path, force);
+  write(format, out.stream());
+  if (interrupted()) return cancelled();
+  out.commit();
+  return 0;
+}
 
 // Each returns the callback that runs the subcommand (after parsing) and returns its exit code.
 std::function<int()> register_hits(CLI::App& app);
