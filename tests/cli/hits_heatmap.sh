@@ -6,10 +6,6 @@ source "$(dirname "$0")/lib.sh"
 SAMPLES=${2:?usage: $0 PIERCE_BINARY SAMPLES_DIR}
 PLATES="$SAMPLES/plates.obj"
 
-png_size() {
-  [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] || return 0
-  od -An -tu1 -j16 -N8 "$1" | awk '{ print $1 * 16777216 + $2 * 65536 + $3 * 256 + $4, $5 * 16777216 + $6 * 65536 + $7 * 256 + $8 }'
-}
 # mean_of OUTPUT: the mean count per pixel from the printed statistics.
 mean_of() { sed -n 's/.* per ray: mean \([0-9.]*\) .*/\1/p' "$1"; }
 

@@ -5,15 +5,10 @@ source "$(dirname "$0")/lib.sh"
 SAMPLES=${2:?usage: $0 PIERCE_BINARY SAMPLES_DIR}
 STEP="$SAMPLES/plate_assembly.step"
 
-# png_info FILE: "WIDTH HEIGHT" from the IHDR chunk, or nothing if the signature is wrong.
-png_info() {
-  [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] || return 0
-  od -An -tu1 -j16 -N8 "$1" | awk '{ print $1 * 16777216 + $2 * 65536 + $3 * 256 + $4, $5 * 16777216 + $6 * 65536 + $7 * 256 + $8 }'
-}
 
 "$PIERCE" thickness "$STEP" --per face --png "$WORK/t.png" --png-size 160x120 >"$WORK/out" 2>"$WORK/err" ||
   fail "thickness --png failed: $(cat "$WORK/err")"
-[ "$(png_info "$WORK/t.png")" = "160 120" ] || fail "thickness picture: '$(png_info "$WORK/t.png")', expected 160 120"
+[ "$(png_size "$WORK/t.png")" = "160 120" ] || fail "thickness picture: '$(png_size "$WORK/t.png")', expected 160 120"
 grep -q "picture .*160x120" "$WORK/out" || fail "thickness --png does not report the picture: $(cat "$WORK/out")"
 # Uncompressed 8-bit RGB: the image's bytes are in the file. A white picture would be all 0xff;
 # count distinct byte values as a cheap "something was drawn" check.
@@ -26,7 +21,7 @@ expect_error "png exists" "not overwriting it without --force" -- "$PIERCE" thic
 cmp -s "$WORK/t.png" "$WORK/keep.png" || fail "existing PNG was changed without --force"
 "$PIERCE" thickness "$STEP" --png "$WORK/t.png" --png-size 100x80 --png-view 0,0,-1 --force >/dev/null 2>&1 ||
   fail "thickness --png --force failed"
-[ "$(png_info "$WORK/t.png")" = "100 80" ] || fail "--force did not replace the picture"
+[ "$(png_size "$WORK/t.png")" = "100 80" ] || fail "--force did not replace the picture"
 
 expect_error "bad size" "--png-size" -- "$PIERCE" thickness "$STEP" --png "$WORK/x.png" --png-size 100
 expect_error "bad view" "--png-view" -- "$PIERCE" thickness "$STEP" --png "$WORK/x.png" --png-view 0,0,0
@@ -34,7 +29,7 @@ expect_error "bad view" "--png-view" -- "$PIERCE" thickness "$STEP" --png "$WORK
 
 "$PIERCE" overlaps "$STEP" --rays axes:n=16 --png "$WORK/o.png" --png-size 128x96 >"$WORK/out" 2>"$WORK/err" ||
   fail "overlaps --png failed: $(cat "$WORK/err")"
-[ "$(png_info "$WORK/o.png")" = "128 96" ] || fail "overlaps picture: '$(png_info "$WORK/o.png")', expected 128 96"
+[ "$(png_size "$WORK/o.png")" = "128 96" ] || fail "overlaps picture: '$(png_size "$WORK/o.png")', expected 128 96"
 expect_error "overlaps png exists" "not overwriting it without --force" -- "$PIERCE" overlaps "$STEP" --png "$WORK/o.png"
 
 finish
