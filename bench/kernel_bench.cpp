@@ -267,7 +267,7 @@ double mrays_per_s(const Cell& c, std::size_t rays) { return double(rays) / c.me
 
 struct SceneResult {
   const BenchScene* scene;
-  double pierce_build_s = 0;  // what Accel builds for the own-BVH kernels: binned SAH + collapse to BVH8
+  double pierce_build_s = 0;  // what Accel builds for the own-BVH kernels: the 8-wide BVH
   std::size_t pierce_bytes = 0, wide_nodes = 0, leaf_blocks = 0, triangles_in_bvh = 0;
   double embree_build_s = 0, embree_robust_build_s = 0;
   std::size_t embree_bytes = 0;
@@ -356,7 +356,7 @@ void print_scene(const SceneResult& r, const Settings& st) {
   std::cout << "triangles " << s.scene.triangle_count() << " in " << s.scene.geometries().size()
             << " geometries; rays " << rays << "\n";
   const double tris = double(s.scene.triangle_count());
-  std::cout << "build: Pierce (binned SAH + collapse to BVH8, float) " << fmt("%.3f", r.pierce_build_s) << " s, "
+  std::cout << "build: Pierce (8-wide binned SAH, float) " << fmt("%.3f", r.pierce_build_s) << " s, "
             << r.wide_nodes << " wide nodes, " << r.leaf_blocks << " leaf blocks ("
             << fmt("%.2f", double(r.triangles_in_bvh) / double(std::max<std::size_t>(1, r.leaf_blocks)))
             << " of 8 lanes used), " << fmt("%.0f", double(r.pierce_bytes) / tris) << " bytes/triangle; "

@@ -12,6 +12,8 @@
 #include <embree3/rtcore.h>
 #include <tbb/parallel_invoke.h>
 
+#include "embree_build_support.h"
+
 #include <cmath>
 
 namespace pierce {
@@ -230,35 +232,16 @@ void* embree_create_leaf(RTCThreadLocalAllocator alloc, const RTCBuildPrimitive*
   return leaf;
 }
 
-// Float bounds containing [lo, hi] (exact for float input).
-float round_down(double x) {
-  const auto f = float(x);
-  return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
-}
-float round_up(double x) {
-  const auto f = float(x);
-  return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
-}
-
-RTCDevice builder_device() {
-  static const RTCDevice device = rtcNewDevice("threads=0");  // stateless for rtcBuildBVH; shared
-  return device;
-}
-
 // The tree Embree's builder chooses over `refs`, as Pierce nodes with exact boxes; `order` gets the
 // refs in leaf order. False (and nothing written) if Embree failed or lost or repeated a primitive,
 // or made a leaf beyond what the wide collapse takes.
 template <typename T>
 bool build_with_embree(const std::vector<Ref<T>>& refs, const BvhBuildOptions& opts, std::vector<BvhNode<T>>& nodes,
                        std::vector<std::uint32_t>& order) {
-  const RTCDevice device = builder_device();
+  const RTCDevice device = detail::builder_device();
   if (device == nullptr) return false;
   std::vector<RTCBuildPrimitive> prims(refs.size());
-  for (std::size_t i = 0; i < refs.size(); ++i) {
-    const BBox<T>& b = refs[i].box;
-    prims[i] = {round_down(double(b.lo.x)), round_down(double(b.lo.y)), round_down(double(b.lo.z)), 0,
-                round_up(double(b.hi.x)),   round_up(double(b.hi.y)),   round_up(double(b.hi.z)),   std::uint32_t(i)};
-  }
+  for (std::size_t i = 0; i < refs.size(); ++i) prims[i] = detail::build_primitive(refs[i].box, std::uint32_t(i));
   RTCBVH bvh = rtcNewBVH(device);
   RTCBuildArguments args = rtcDefaultBuildArguments();
   args.buildQuality = RTC_BUILD_QUALITY_MEDIUM;

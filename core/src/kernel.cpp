@@ -93,7 +93,7 @@ struct Accel::Lazy {
 };
 
 Accel::Accel(const Scene& scene)
-    : scene_(&scene), wide_(build_wide_bvh(build_bvh<float>(scene))), lazy_(std::make_unique<Lazy>()) {}
+    : scene_(&scene), wide_(build_wide_bvh<float>(scene)), lazy_(std::make_unique<Lazy>()) {}
 
 Accel::~Accel() = default;
 
@@ -113,7 +113,7 @@ const Bvhd& Accel::bvh_double() const {
 }
 
 const WideBvhd& Accel::wide_double() const {
-  std::call_once(lazy_->wide_double_once, [this] { lazy_->wide_double = build_wide_bvh(bvh_double()); });
+  std::call_once(lazy_->wide_double_once, [this] { lazy_->wide_double = build_wide_bvh<double>(*scene_); });
   return lazy_->wide_double;
 }
 

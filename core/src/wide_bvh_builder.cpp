@@ -1,161 +1,207 @@
-#include "pierce/wide_bvh.h"
-
+// The wide BVH built directly: Embree's rtcBuildBVH (binned SAH, parallel) with branching factor
+// eight chooses the tree, which is then written once into Pierce's WideNode / TriBlock layout with
+// every box recomputed exactly from the triangles in precision T. No binary tree is built and
+// nothing is collapsed. Where Embree's builder cannot be used (coordinates beyond
+// kEmbreeBuildMaxCoord, or it failed), Pierce's own binned SAH builder and the collapse take over.
 #include <algorithm>
 #include <array>
-#include <stdexcept>
+#include <cstdint>
+#include <new>
+#include <vector>
+
+#include <tbb/parallel_for.h>
+
+#include "embree_build_support.h"
+#include "pierce/bvh_builder.h"
+#include "pierce/wide_bvh.h"
+#include "wide_bvh_writer.h"
 
 namespace pierce {
 
 namespace {
 
+// The tree as Embree's builder makes it, in its thread-local allocators. Both kinds start with
+// the leaf's triangle count (0 for an inner node).
+struct BuildInner {
+  std::uint32_t leaf_count;
+  std::uint32_t child_count;
+  void* child[kWideArity];
+};
+struct BuildLeaf {
+  std::uint32_t leaf_count;
+  std::uint32_t id[1];  // leaf_count primitive ids (allocated to size)
+};
+
+void* create_node(RTCThreadLocalAllocator alloc, unsigned int children, void* /*user*/) {
+  return new (rtcThreadLocalAlloc(alloc, sizeof(BuildInner), 16)) BuildInner{0, children, {}};
+}
+void set_children(void* node, void** children, unsigned int count, void* /*user*/) {
+  auto* n = static_cast<BuildInner*>(node);
+  n->child_count = std::min<unsigned int>(count, kWideArity);
+  for (unsigned int i = 0; i < n->child_count; ++i) n->child[i] = children[i];
+}
+void set_bounds(void*, const RTCBounds**, unsigned int, void*) {}  // recomputed exactly when written
+void* create_leaf(RTCThreadLocalAllocator alloc, const RTCBuildPrimitive* prims, size_t count, void* /*user*/) {
+  const std::size_t bytes = offsetof(BuildLeaf, id) + sizeof(std::uint32_t) * std::max<size_t>(count, 1);
+  auto* leaf = static_cast<BuildLeaf*>(rtcThreadLocalAlloc(alloc, bytes, 16));
+  leaf->leaf_count = std::uint32_t(count);
+  for (size_t i = 0; i < count; ++i) leaf->id[i] = prims[i].primID;
+  return leaf;
+}
+std::uint32_t leaf_count(const void* p) { return *static_cast<const std::uint32_t*>(p); }
+
+// A triangle the build takes: where it is in the scene.
+struct TriRef {
+  std::uint32_t geom, prim;
+};
+
 template <typename T>
-struct Collapser {
-  const Bvh<T>& bin;
+struct Writer {
+  const Scene& scene;
+  const std::vector<TriRef>& refs;
   WideBvh<T>& out;
-  std::vector<std::uint32_t> tri_count;  // triangles under each binary node
-  std::vector<std::uint32_t> scratch;
+  std::vector<std::uint8_t> seen;  // each primitive must be in exactly one leaf
+  bool ok = true;
 
-  std::uint32_t count(std::uint32_t i) {
-    const BvhNode<T>& n = bin.nodes[i];
-    if (n.is_leaf()) return tri_count[i] = n.count;
-    return tri_count[i] = count(n.first) + count(n.first + 1);
+  Triangle<T> triangle(std::uint32_t id) const {
+    const TriRef r = refs[id];
+    const Geometry& geo = scene.geometry(r.geom);
+    const Tri& t = geo.triangles[r.prim];
+    return {Vec3<T>(geo.vertices[t[0]]), Vec3<T>(geo.vertices[t[1]]), Vec3<T>(geo.vertices[t[2]]), r.geom, r.prim};
   }
 
-  void gather(std::uint32_t i, std::vector<std::uint32_t>& tris) const {
-    const BvhNode<T>& n = bin.nodes[i];
-    if (n.is_leaf()) {
-      for (std::uint32_t t = n.first; t < n.first + n.count; ++t) tris.push_back(t);
-      return;
-    }
-    gather(n.first, tris);
-    gather(n.first + 1, tris);
-  }
-
-  // The triangles of binary subtree i as one leaf of consecutive blocks.
-  NodeRef make_leaf(std::uint32_t i) {
-    scratch.clear();
-    gather(i, scratch);
-    const auto nblocks = std::uint32_t((scratch.size() + kBlockLanes - 1) / kBlockLanes);
-    if (nblocks > kMaxLeafBlocks)
-      throw std::length_error("wide BVH: a leaf of more than 512 triangles (build with a smaller max_leaf_size)");
-    const auto first = std::uint32_t(out.blocks.size());
-    if (std::size_t(first) + nblocks > kMaxBlocks)
-      throw std::length_error("wide BVH: more than 2^28 triangles");
-    for (std::uint32_t b = 0; b < nblocks; ++b) {
-      TriBlock<T>& blk = out.blocks.emplace_back();
-      for (int c = 0; c < 3; ++c)
-        for (int a = 0; a < 3; ++a)
-          for (int l = 0; l < kBlockLanes; ++l) blk.v[c][a][l] = T(0);
-      for (int l = 0; l < kBlockLanes; ++l) {
-        blk.geom[l] = blk.prim[l] = kInvalidId;
-        const std::size_t k = std::size_t(b) * kBlockLanes + std::size_t(l);
-        if (k >= scratch.size()) continue;
-        const Triangle<T>& t = bin.tris[scratch[k]];
-        const Vec3<T> p[3] = {t.v0, t.v1, t.v2};
-        for (int c = 0; c < 3; ++c)
-          for (int a = 0; a < 3; ++a) blk.v[c][a][l] = p[c][a];
-        blk.geom[l] = t.geom;
-        blk.prim[l] = t.prim;
-        blk.sum[l] = sum_order(t.v0, t.v1, t.v2);
-        blk.valid |= 1u << l;
+  // Writes the subtree at `p` (the node before its children, preorder) and returns its reference;
+  // `box` gets its exact bounds.
+  NodeRef write(const void* p, std::uint32_t level, BBox<T>& box) {
+    if (const std::uint32_t n = leaf_count(p); n > 0) {
+      const auto* leaf = static_cast<const BuildLeaf*>(p);
+      for (std::uint32_t i = 0; i < n; ++i) {
+        const std::uint32_t id = leaf->id[i];
+        if (id >= refs.size() || seen[id]) {
+          ok = false;
+          return make_leaf_ref(0, 1);
+        }
+        seen[id] = 1;
       }
+      const std::uint32_t nblocks = detail::leaf_blocks_for(n);
+      const auto first = std::uint32_t(out.blocks.size());
+      detail::check_block_count(std::size_t(first) + nblocks);
+      out.blocks.resize(first + nblocks);
+      out.triangles += n;
+      return detail::write_leaf(out, first, n, [&](std::size_t k) { return triangle(leaf->id[k]); }, box);
     }
-    out.triangles += scratch.size();
-    return make_leaf_ref(first, nblocks);
-  }
-
-  NodeRef ref_of(std::uint32_t i, std::uint32_t level) {
-    const BvhNode<T>& n = bin.nodes[i];
-    if (n.is_leaf() || tri_count[i] <= std::uint32_t(kBlockLanes)) return make_leaf(i);
-    return make_inner(i, level);
-  }
-
-  NodeRef make_inner(std::uint32_t i, std::uint32_t level) {
+    const auto* inner = static_cast<const BuildInner*>(p);
+    const int nk = int(inner->child_count);
+    if (nk < 1) {
+      ok = false;
+      return make_leaf_ref(0, 1);
+    }
     out.depth = std::max(out.depth, level + 1);
-    // Open the binary subtree: replace the inner child of largest area by its two children
-    // until there are eight (or only leaves and small subtrees are left).
-    std::array<std::uint32_t, kWideArity> kids{};
-    int nk = 0;
-    kids[nk++] = bin.nodes[i].first;
-    kids[nk++] = bin.nodes[i].first + 1;
-    while (nk < kWideArity) {
-      int best = -1;
-      T best_area = T(-1);
-      for (int k = 0; k < nk; ++k) {
-        const BvhNode<T>& c = bin.nodes[kids[k]];
-        if (c.is_leaf() || tri_count[kids[k]] <= std::uint32_t(kBlockLanes)) continue;
-        const T area = c.box.half_area();
-        if (area > best_area) best_area = area, best = k;
-      }
-      if (best < 0) break;
-      const std::uint32_t opened = kids[best];
-      kids[best] = bin.nodes[opened].first;
-      kids[nk++] = bin.nodes[opened].first + 1;
-    }
     const auto index = std::uint32_t(out.nodes.size());
     out.nodes.emplace_back();
-    {
-      WideNode<T>& w = out.nodes[index];
-      for (int a = 0; a < 3; ++a)
-        for (int s = 0; s < kWideArity; ++s) {
-          w.lo[a][s] = std::numeric_limits<T>::infinity();
-          w.hi[a][s] = -std::numeric_limits<T>::infinity();
-        }
-      for (int s = 0; s < kWideArity; ++s) w.child[s] = 0;
-      for (int s = 0; s < nk; ++s) {
-        const BBox<T>& b = bin.nodes[kids[s]].box;
-        for (int a = 0; a < 3; ++a) w.lo[a][s] = b.lo[a], w.hi[a][s] = b.hi[a];
+    std::array<BBox<T>, kWideArity> boxes{};
+    std::array<NodeRef, kWideArity> refs_out{};
+    for (int s = 0; s < nk && ok; ++s) {
+      if (inner->child[s] == nullptr) {
+        ok = false;
+        break;
       }
-      const std::uint32_t valid = (1u << nk) - 1;
-      // Near-to-far per octant: rank the children by their centres along (+-1, +-1, +-1).
-      for (int oct = 0; oct < 8; ++oct) {
-        std::array<int, kWideArity> slot{};
-        std::array<double, kWideArity> key{};
-        for (int s = 0; s < kWideArity; ++s) {
-          slot[s] = s;
-          key[s] = std::numeric_limits<double>::infinity();  // empty slots last
-          if (s >= nk) continue;
-          const BBox<T>& b = bin.nodes[kids[s]].box;
-          key[s] = 0;
-          for (int a = 0; a < 3; ++a) {
-            const double c = 0.5 * (double(b.lo[a]) + double(b.hi[a]));
-            key[s] += (oct >> a & 1) ? -c : c;
-          }
-        }
-        // Insertion sort (stable, no allocation): eight entries.
-        for (int i = 1; i < kWideArity; ++i)
-          for (int j = i; j > 0 && key[slot[j]] < key[slot[j - 1]]; --j) std::swap(slot[j], slot[j - 1]);
-        std::uint32_t packed = valid << 24;
-        for (int k = 0; k < kWideArity; ++k) packed |= std::uint32_t(slot[k]) << (3 * k);
-        w.order[oct] = packed;
-      }
+      refs_out[s] = write(inner->child[s], level + 1, boxes[s]);
+      box.extend(boxes[s]);
     }
-    // Children after the node itself (the vector may grow: no references kept across this).
-    for (int s = 0; s < nk; ++s) {
-      const NodeRef r = ref_of(kids[s], level + 1);
-      out.nodes[index].child[s] = r;
-    }
+    if (!ok) return make_leaf_ref(0, 1);
+    WideNode<T>& w = out.nodes[index];  // the vector may have grown: looked up again
+    detail::set_wide_boxes(w, boxes.data(), nk);
+    for (int s = 0; s < nk; ++s) w.child[s] = refs_out[s];
     return index;
   }
 };
 
+// Embree's tree written as the wide BVH; false (and `out` unusable) if Embree failed, or lost or
+// repeated a primitive.
+template <typename T>
+bool build_with_embree(const Scene& scene, const BvhBuildOptions& opts, WideBvh<T>& out) {
+  const RTCDevice device = detail::builder_device();
+  if (device == nullptr) return false;
+  std::vector<TriRef> refs;
+  refs.reserve(scene.triangle_count());
+  for (std::uint32_t g = 0; g < scene.geometries().size(); ++g) {
+    const Geometry& geo = scene.geometry(g);
+    for (std::uint32_t p = 0; p < geo.triangles.size(); ++p) {
+      // The scene flags triangles degenerate in float; a double BVH asks in double.
+      if constexpr (std::is_same_v<T, float>) {
+        if (geo.degenerate[p]) continue;
+      } else {
+        const Tri& t = geo.triangles[p];
+        if (is_degenerate(geo.vertices[t[0]], geo.vertices[t[1]], geo.vertices[t[2]])) continue;
+      }
+      refs.push_back({g, p});
+    }
+  }
+  if (refs.empty()) return true;
+  std::vector<RTCBuildPrimitive> prims(refs.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, refs.size(), 4096), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      const Geometry& geo = scene.geometry(refs[i].geom);
+      const Tri& t = geo.triangles[refs[i].prim];
+      BBox<T> b;
+      for (int k = 0; k < 3; ++k) b.extend(Vec3<T>(geo.vertices[t[k]]));
+      prims[i] = detail::build_primitive(b, std::uint32_t(i));
+    }
+  });
+
+  RTCBVH bvh = rtcNewBVH(device);
+  RTCBuildArguments args = rtcDefaultBuildArguments();
+  args.buildQuality = RTC_BUILD_QUALITY_MEDIUM;
+  args.maxBranchingFactor = kWideArity;
+  // A leaf block tests its eight lanes at once: the SAH counts leaf cost per block of eight.
+  args.sahBlockSize = kBlockLanes;
+  // Embree fills a node's eight slots by splitting its children down to minLeafSize regardless of
+  // the SAH: a subtree of one block's worth of triangles becomes one leaf block (as the collapse).
+  args.maxLeafSize = std::uint32_t(std::clamp(opts.max_leaf_size, 1, 32));
+  args.minLeafSize = std::min<std::uint32_t>(kBlockLanes, args.maxLeafSize);
+  args.traversalCost = opts.traversal_cost;
+  args.intersectionCost = 1.0f;
+  args.bvh = bvh;
+  args.primitives = prims.data();
+  args.primitiveCount = prims.size();
+  args.primitiveArrayCapacity = prims.size();
+  args.createNode = create_node;
+  args.setNodeChildren = set_children;
+  args.setNodeBounds = set_bounds;
+  args.createLeaf = create_leaf;
+  const void* root = rtcBuildBVH(&args);
+  bool ok = root != nullptr && rtcGetDeviceError(device) == RTC_ERROR_NONE;
+  if (ok) {
+    std::vector<RTCBuildPrimitive>().swap(prims);  // Embree is done with them
+    out.nodes.reserve(refs.size() / 16 + 1);
+    out.blocks.reserve(refs.size() / 4 + 1);
+    Writer<T> w{scene, refs, out, std::vector<std::uint8_t>(refs.size(), 0)};
+    BBox<T> box;
+    out.root = w.write(root, 0, box);
+    out.bounds = box;
+    ok = w.ok && out.triangles == refs.size();
+  }
+  rtcReleaseBVH(bvh);
+  return ok;
+}
+
 }  // namespace
 
 template <typename T>
-WideBvh<T> build_wide_bvh(const Bvh<T>& binary) {
-  WideBvh<T> out;
-  out.scene_max_abs = binary.scene_max_abs;
-  if (binary.empty() || binary.nodes.empty()) return out;
-  out.bounds = binary.nodes[0].box;
-  Collapser<T> c{binary, out, std::vector<std::uint32_t>(binary.nodes.size(), 0), {}};
-  c.count(0);
-  out.nodes.reserve(binary.nodes.size() / 4 + 1);
-  out.blocks.reserve(binary.tris.size() / 4 + 1);
-  out.root = c.ref_of(0, 0);
-  return out;
+WideBvh<T> build_wide_bvh(const Scene& scene, const BvhBuildOptions& opts) {
+  const double max_coord = scene.bounds().max_abs_coord();
+  if (opts.embree_builder && max_coord < kEmbreeBuildMaxCoord) {
+    WideBvh<T> out;
+    out.scene_max_abs = max_coord;
+    if (build_with_embree(scene, opts, out)) return out;
+  }
+  BvhBuildOptions own = opts;
+  own.embree_builder = false;
+  return build_wide_bvh(build_bvh<T>(scene, own));
 }
 
-template WideBvh<float> build_wide_bvh<float>(const Bvh<float>&);
-template WideBvh<double> build_wide_bvh<double>(const Bvh<double>&);
+template WideBvh<float> build_wide_bvh<float>(const Scene&, const BvhBuildOptions&);
+template WideBvh<double> build_wide_bvh<double>(const Scene&, const BvhBuildOptions&);
 
 }  // namespace pierce

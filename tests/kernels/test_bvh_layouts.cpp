@@ -1,6 +1,7 @@
 // The kernels on Pierce's (wide) BVH must be exact for any valid tree, not only for the SAH builder's
 // trees: random topologies with heavily overlapping nodes (and tiny leaves, and huge ones) stress
 // the culling and release rules, and each kernel must still return the brute-force list.
+#include <map>
 #include <numeric>
 #include <random>
 
@@ -85,9 +86,7 @@ void check_kernel(const char* name, const WideBvhf& bvh, const Expected& ex, int
   }
 }
 
-// The kernels run on the wide BVH collapsed from the random binary tree: random wide layouts too.
-void check_all(const Bvhf& binary, const Expected& ex) {
-  const WideBvhf bvh = build_wide_bvh(binary);
+void check_wide(const WideBvhf& bvh, const Expected& ex) {
   for (int tie = 0; tie < 2; ++tie) {
     SCOPED_TRACE(tie_name(kTieOrders[tie]));
     check_kernel<RestartKernel<float>>("restart", bvh, ex, tie, 0);
@@ -97,6 +96,9 @@ void check_all(const Bvhf& binary, const Expected& ex) {
     for (std::size_t n : {0, 1, 3, 16}) check_kernel<NodeCullKernel<float>>("nodecull", bvh, ex, tie, n);
   }
 }
+
+// The kernels run on the wide BVH collapsed from the random binary tree: random wide layouts too.
+void check_all(const Bvhf& binary, const Expected& ex) { check_wide(build_wide_bvh(binary), ex); }
 
 // Big random triangles: every ray crosses dozens, and every node overlaps most others.
 TEST(BvhLayouts, RandomTreesOverDenseSoup) {
@@ -237,6 +239,71 @@ TEST(BvhLayouts, EmbreeAndOwnBuilders) {
       ASSERT_EQ(n.box.hi, want.hi);
     }
     check_all(bvh, ex);
+  }
+}
+
+}  // namespace
+}  // namespace pierce::test
+
+namespace pierce::test {
+namespace {
+
+// The exact box of the subtree at `ref`; fails the test where a stored child box is not exactly
+// the union of the triangles below it. Counts each (geom, prim) seen.
+BBoxf exact_subtree_box(const WideBvhf& bvh, NodeRef ref, std::map<std::pair<std::uint32_t, std::uint32_t>, int>& seen) {
+  BBoxf box;
+  if (is_leaf(ref)) {
+    for (std::uint32_t b = leaf_first_block(ref); b < leaf_first_block(ref) + leaf_block_count(ref); ++b) {
+      const TriBlock<float>& blk = bvh.blocks[b];
+      for (int l = 0; l < kBlockLanes; ++l) {
+        if (!(blk.valid >> l & 1)) continue;
+        ++seen[{blk.geom[l], blk.prim[l]}];
+        for (int c = 0; c < 3; ++c) box.extend(blk.corner(c, l));
+      }
+    }
+    return box;
+  }
+  const WideNode<float>& n = bvh.nodes[ref];
+  for (int s = 0; s < kWideArity; ++s) {
+    if (!(n.valid() >> s & 1)) continue;
+    const BBoxf child = exact_subtree_box(bvh, n.child[s], seen);
+    EXPECT_EQ(Vec3f(n.lo[0][s], n.lo[1][s], n.lo[2][s]), child.lo) << "node " << ref << " slot " << s;
+    EXPECT_EQ(Vec3f(n.hi[0][s], n.hi[1][s], n.hi[2][s]), child.hi) << "node " << ref << " slot " << s;
+    box.extend(child);
+  }
+  return box;
+}
+
+// The direct 8-wide build (Embree's builder, and Pierce's own binary build collapsed where that is
+// off) at several leaf sizes: exact boxes, every non-degenerate triangle exactly once, exact kernels.
+TEST(BvhLayouts, DirectWideBuild) {
+  auto meshes = gen::stacked_plates(12);
+  meshes.push_back(gen::duplicated(gen::box({0.2, 0.2, 0.5}, {0.8, 0.8, 1.5}, "dup"), 4, true));
+  meshes.push_back(gen::random_soup(600, 0.3, 9));
+  const Scene scene = gen::to_scene(meshes);
+  const Expected ex(scene, random_rays(scene.bounds(), 60, 8));
+  for (const bool embree : {true, false}) {
+    for (const int max_leaf : {1, 8, 32}) {
+      SCOPED_TRACE(testing::Message() << (embree ? "Embree's builder" : "own builder") << ", max_leaf_size " << max_leaf);
+      BvhBuildOptions opts;
+      opts.embree_builder = embree;
+      opts.max_leaf_size = max_leaf;
+      const WideBvhf bvh = build_wide_bvh<float>(scene, opts);
+      std::map<std::pair<std::uint32_t, std::uint32_t>, int> seen;
+      const BBoxf box = exact_subtree_box(bvh, bvh.root, seen);
+      EXPECT_EQ(box.lo, bvh.bounds.lo);
+      EXPECT_EQ(box.hi, bvh.bounds.hi);
+      std::size_t want = 0;
+      for (std::uint32_t g = 0; g < scene.geometries().size(); ++g)
+        for (std::uint32_t p = 0; p < scene.geometry(g).triangles.size(); ++p) {
+          if (scene.geometry(g).degenerate[p]) continue;
+          ++want;
+          EXPECT_EQ(seen[std::make_pair(g, p)], 1) << "geom " << g << " prim " << p;
+        }
+      EXPECT_EQ(seen.size(), want);
+      EXPECT_EQ(bvh.triangles, want);
+      check_wide(bvh, ex);
+    }
   }
 }
 

@@ -72,10 +72,10 @@ struct KernelOptions {
 };
 
 // A scene with the acceleration structures the kernels need. The float wide BVH is built with the
-// Accel (every Pierce kernel uses it; the binary tree it is collapsed from is dropped at once). The
+// Accel (every Pierce kernel uses it), directly eight wide: no binary tree is built for it. The
 // rest is built on first use (thread-safe): the binary float BVH (origin offsets, Embree's exact
 // user geometry), the double BVHs (the *_d kernels, CSG) and Embree's scenes (embree-*, epsilon).
-// So a run of an own-BVH kernel builds no Embree scene, no double BVH and keeps no binary tree.
+// So a run of an own-BVH kernel builds no Embree scene, no double BVH and no binary tree.
 class Accel {
  public:
   explicit Accel(const Scene& scene);
@@ -85,7 +85,7 @@ class Accel {
   Accel& operator=(const Accel&) = delete;
   const Scene& scene() const { return *scene_; }
   const WideBvhf& wide() const { return wide_; }
-  // The binary float BVH (the same tree the wide one was collapsed from), built on the first call.
+  // The binary float BVH, built on the first call.
   const Bvhf& bvh() const;
   const EmbreeAccel& embree() const;
   // Double-precision BVHs: the binary one (CSG's box queries) and the wide one (the *_d kernels).

@@ -19,6 +19,7 @@ struct TraversalRay {
   T sx = 0, sy = 0, sz = 1;
   T tmin = 0, tmax = 0;
   T pad = 0;  // absolute slack in t for "does the ray meet this box at all"
+  bool ok = false;  // valid(), decided once in make()
 
   // scene_max_abs: largest |coordinate| in the scene, for the padding.
   static TraversalRay make(const Ray& r, double scene_max_abs) {
@@ -30,10 +31,15 @@ struct TraversalRay {
       tr.inv[a] = tr.zero[a] ? T(0) : T(1) / tr.dir[a];
     }
     const T ax = std::abs(tr.dir.x), ay = std::abs(tr.dir.y), az = std::abs(tr.dir.z);
-    tr.kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
-    tr.kx = (tr.kz + 1) % 3;
-    tr.ky = (tr.kx + 1) % 3;
-    if (tr.dir[tr.kz] < T(0)) std::swap(tr.kx, tr.ky);  // keep the winding, so det's sign is the facing
+    // kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2), looked up rather than branched on
+    // (random directions would mispredict it).
+    constexpr int kLargest[8] = {2, 1, 2, 1, 2, 2, 0, 0};  // index (ax > ay) * 4 + (ax > az) * 2 + (ay > az)
+    tr.kz = kLargest[(ax > ay) * 4 + (ax > az) * 2 + (ay > az)];
+    // kx, ky follow kz cyclically, swapped where dir[kz] < 0 to keep the winding, so det's sign is
+    // the facing.
+    const int swap = tr.dir[tr.kz] < T(0);
+    tr.kx = (tr.kz + 1 + swap) % 3;
+    tr.ky = (tr.kz + 2 - swap) % 3;
     tr.sx = tr.dir[tr.kx] / tr.dir[tr.kz];
     tr.sy = tr.dir[tr.ky] / tr.dir[tr.kz];
     tr.sz = T(1) / tr.dir[tr.kz];
@@ -46,11 +52,12 @@ struct TraversalRay {
     const double dmax = std::max({std::abs(r.dir.x), std::abs(r.dir.y), std::abs(r.dir.z)});
     // 2^-20 of the t-span of the scene as seen from this origin: far above the rounding of
     // the triangle test's projection, far below anything that costs traversal work.
-    tr.pad = T(std::ldexp((max_abs(r.org) + scene_max_abs) / (dmax > 0 ? dmax : 1.0), -20));
+    tr.pad = T((max_abs(r.org) + scene_max_abs) / (dmax > 0 ? dmax : 1.0) * 0x1p-20);
+    tr.ok = !(tr.zero[0] && tr.zero[1] && tr.zero[2]) && all_finite(tr.org) && all_finite(tr.dir);
     return tr;
   }
 
-  bool valid() const { return !(zero[0] && zero[1] && zero[2]) && all_finite(org) && all_finite(dir); }
+  bool valid() const { return ok; }
 
   // Monotone widening of a box's far distance: every decision "does the ray meet box B"
   // uses tn(B) <= widen(tf(B)); monotone in tf, so a box containing another never fails

@@ -30,20 +30,15 @@
 
 namespace pierce {
 
-template <typename T>
-struct NodeEntry {
-  T tn;  // entry distance of the node
-  NodeRef ref;
-};
-
 // Depth-first pending nodes, in a buffer sized once from the BVH's depth (WideBvh::stack_capacity):
 // no allocation and no capacity check per push. The traversal works on the raw buffer.
 template <typename T>
 class NodeStack {
  public:
   static constexpr bool kOrdered = false;
+  // Room for n entries, plus a node's worth: the SIMD push writes eight entries whatever passed.
   void reserve(std::size_t n) {
-    if (v_.size() < n) v_.resize(n);
+    if (v_.size() < n + kWideArity) v_.resize(n + kWideArity);
   }
   void clear() { size_ = 0; }
   bool empty() const { return size_ == 0; }
@@ -122,13 +117,13 @@ struct TraversalPolicy {
   void node(NodeRef /*ref*/, T /*tn*/) {}
 };
 
-// Pushes the root onto `pending` if the ray meets the scene's box within [lo, hi].
+// Pushes the root onto `pending` for a valid ray and a non-empty range, entered at lo. The scene's
+// box is not tested: every child box lies inside it, so the root's node test (or, for a root leaf,
+// each triangle's own box test) rejects whatever it would.
 template <typename T, class Pending, class C>
-inline void seed(const WideBvh<T>& bvh, const TraversalRay<T>& r, T lo, T hi, Pending& pending, C& c) {
-  if (bvh.empty() || !r.valid()) return;
-  const Span<T> s = slab(r, bvh.bounds.lo, bvh.bounds.hi);
-  c.node_tests += 1;
-  if (box_overlaps(r, s, lo, hi)) pending.push({s.tn, bvh.root});
+inline void seed(const WideBvh<T>& bvh, const TraversalRay<T>& r, T lo, T hi, Pending& pending, C& /*counters*/) {
+  if (bvh.empty() || !r.valid() || !(lo <= hi)) return;
+  pending.push({lo, bvh.root});
 }
 
 // Pieces of the loop shared by both container kinds.
@@ -139,16 +134,31 @@ inline void detail_leaf(const Ops& ops, const TriBlock<T>* blocks, NodeRef ref, 
   const std::uint32_t first = leaf_first_block(ref), end = first + leaf_block_count(ref);
   for (std::uint32_t b = first; b < end; ++b) {
     const TriBlock<T>& blk = blocks[b];
-    std::uint32_t cand = ops.tri_candidates(blk);
     c.prim_tests += std::uint64_t(__builtin_popcount(blk.valid));
-    while (cand != 0) {
-      const int l = __builtin_ctz(cand);
-      cand &= cand - 1;
-      TriangleHit<T> th;
-      if (!intersect(r, blk.corner(0, l), blk.corner(1, l), blk.corner(2, l), blk.sum[l], p.lo(), p.hi(), th))
-        continue;
-      c.valid_hits += 1;
-      p.hit(blk, l, th);
+    if constexpr (Ops::kEdges) {
+      simd::BlockEdges e;
+      std::uint32_t cand = ops.tri_candidates(blk, e);
+      while (cand != 0) {
+        const int l = __builtin_ctz(cand);
+        cand &= cand - 1;
+        TriangleHit<T> th;
+        if (!intersect_given_edges(r, blk.corner(0, l), blk.corner(1, l), blk.corner(2, l), blk.sum[l], e.U[l], e.V[l],
+                                   e.W[l], p.lo(), p.hi(), th))
+          continue;
+        c.valid_hits += 1;
+        p.hit(blk, l, th);
+      }
+    } else {
+      std::uint32_t cand = ops.tri_candidates(blk);
+      while (cand != 0) {
+        const int l = __builtin_ctz(cand);
+        cand &= cand - 1;
+        TriangleHit<T> th;
+        if (!intersect(r, blk.corner(0, l), blk.corner(1, l), blk.corner(2, l), blk.sum[l], p.lo(), p.hi(), th))
+          continue;
+        c.valid_hits += 1;
+        p.hit(blk, l, th);
+      }
     }
   }
 }
@@ -166,16 +176,28 @@ inline std::uint32_t detail_cull(Policy& p, std::uint32_t mask, const T* tn) {
   return mask;
 }
 
-// Leaf blocks are the data most likely to miss the caches: ask for them as soon as they are
-// known to be visited, while the nodes in front of them are processed.
+// A child that passed the box test is asked for at once, while the nodes in front of it are
+// processed: the lines a node test reads (the whole 256-byte float node), or those a leaf block's
+// SIMD test reads (all but the ids). On a scene beyond the caches this hides much of the latency.
 template <typename T>
-inline void detail_prefetch_leaves(const TriBlock<T>* blocks, std::uint32_t mask, const NodeRef* child) {
-  for (std::uint32_t m = mask; m != 0; m &= m - 1) {
-    const NodeRef ref = child[__builtin_ctz(m)];
-    if (!is_leaf(ref)) continue;
+inline void detail_prefetch(const WideNode<T>* nodes, const TriBlock<T>* blocks, NodeRef ref) {
+  if (is_leaf(ref)) {
     const char* line = reinterpret_cast<const char*>(&blocks[leaf_first_block(ref)]);
     for (std::size_t off = 0; off < offsetof(TriBlock<T>, geom); off += 64) __builtin_prefetch(line + off);
+  } else {
+    const char* line = reinterpret_cast<const char*>(&nodes[ref]);
+    for (std::size_t off = 0; off < offsetof(WideNode<T>, order); off += 64) __builtin_prefetch(line + off);
   }
+}
+template <typename T>
+inline void detail_prefetch(const WideNode<T>* nodes, const TriBlock<T>* blocks, std::uint32_t mask,
+                            const NodeRef* child) {
+  for (std::uint32_t m = mask; m != 0; m &= m - 1) detail_prefetch(nodes, blocks, child[__builtin_ctz(m)]);
+}
+template <typename T>
+inline void detail_prefetch(const WideNode<T>* nodes, const TriBlock<T>* blocks, const NodeEntry<T>* entries,
+                            std::uint32_t n) {
+  for (std::uint32_t i = 0; i < n; ++i) detail_prefetch(nodes, blocks, entries[i].ref);
 }
 
 // The pending nodes as the loop sees them. A stack is worked on through locals (buffer pointer and
@@ -190,6 +212,8 @@ class StackCursor {
   T next_tn() const { return base_[sp_ - 1].tn; }
   NodeEntry<T> pop() { return base_[--sp_]; }
   void push(NodeEntry<T> e) { base_[sp_++] = e; }
+  NodeEntry<T>* top() { return base_ + sp_; }
+  void grow(std::size_t n) { sp_ += n; }
   const NodeStack<T>& sync() {
     s_.set_size(sp_);
     return s_;
@@ -263,14 +287,27 @@ inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Conta
       detail_leaf<Ops>(ops, blocks, cur.ref, r, p, c);
       continue;
     }
+    const WideNode<T>& node = nodes[cur.ref];
+    c.node_tests += std::uint64_t(__builtin_popcount(node.valid()));
+    if constexpr (!decltype(pending)::kOrdered && !Policy::kCullsInRange) {
+      // Depth first: every child that passes goes onto the stack far to near in one SIMD store,
+      // and the nearest, on top, is taken at once.
+      NodeEntry<T>* const pushed = pending.top();
+      const std::uint32_t n = ops.push_hits(node, p.lo(), p.hi(), pushed);
+      if (n == 0) continue;
+      detail_prefetch(nodes, blocks, pushed, n);
+      pending.grow(n);
+      cur = pending.pop();
+      have = true;
+      continue;
+    }
     alignas(32) T tn[kWideArity];
     alignas(32) NodeRef child[kWideArity];
     // Bit k: the child ranked k-th near to far for this octant passed; tn and child in that order.
-    std::uint32_t mask = ops.node_hits(nodes[cur.ref], p.lo(), p.hi(), tn, child);
-    c.node_tests += std::uint64_t(__builtin_popcount(nodes[cur.ref].valid()));
+    std::uint32_t mask = ops.node_hits(node, p.lo(), p.hi(), tn, child);
     if constexpr (Policy::kCullsInRange) mask = detail_cull(p, mask, tn);
     if (mask == 0) continue;
-    detail_prefetch_leaves(blocks, mask, child);
+    detail_prefetch(nodes, blocks, mask, child);
     if constexpr (decltype(pending)::kOrdered) {
       // Descend into the nearest child directly unless a pending node is nearer still.
       int nearest = __builtin_ctz(mask);

@@ -16,7 +16,12 @@ struct Vec3 {
   constexpr explicit Vec3(const Vec3<U>& o) : x(T(o.x)), y(T(o.y)), z(T(o.z)) {}
 
   constexpr T& operator[](std::size_t i) { return i == 0 ? x : (i == 1 ? y : z); }
-  constexpr T operator[](std::size_t i) const { return i == 0 ? x : (i == 1 ? y : z); }
+  // By value through a small array rather than a chain of selects: with a run-time index (the
+  // triangle test's per-ray axes) this is a load, not two data-dependent branches.
+  constexpr T operator[](std::size_t i) const {
+    const T v[3] = {x, y, z};
+    return v[i];
+  }
 
   friend constexpr Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
   friend constexpr Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }

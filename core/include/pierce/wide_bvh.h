@@ -1,17 +1,18 @@
 #pragma once
-// 8-wide BVH in precision T, collapsed from the binary SAH BVH (Bvh<T>). Child boxes are stored
-// structure-of-arrays so one SIMD slab test covers all eight children; leaves are blocks of up to
-// eight triangles, also structure-of-arrays, with raw vertices (shared vertices stay bit-identical
-// to the input) and each triangle's SumOrder precomputed.
+// 8-wide BVH in precision T. Child boxes are stored structure-of-arrays so one SIMD slab test
+// covers all eight children; leaves are blocks of up to eight triangles, also structure-of-arrays,
+// with raw vertices (shared vertices stay bit-identical to the input) and each triangle's SumOrder
+// precomputed.
 //
-// The boxes are exactly the binary BVH's boxes (unions of float triangle boxes, no rounding), so
-// "triangle hit => every enclosing box hit" carries over from the binary tree unchanged.
+// Every box is the exact union (min and max in T, no rounding) of the triangles below it, so a
+// child's box lies inside its parent's and "triangle hit => every enclosing box hit" holds.
 #include <cstdint>
 #include <limits>
 #include <vector>
 
 #include "pierce/bbox.h"
 #include "pierce/bvh.h"
+#include "pierce/bvh_builder.h"
 #include "pierce/hit.h"
 #include "pierce/triangle.h"
 
@@ -31,6 +32,13 @@ constexpr std::uint32_t leaf_block_count(NodeRef r) { return (r & 63u) + 1; }
 constexpr NodeRef make_leaf_ref(std::uint32_t first_block, std::uint32_t blocks) {
   return kLeafFlag | first_block << 6 | (blocks - 1);
 }
+
+// A node to visit and the distance at which the ray enters it (the traversal's stack and queue).
+template <typename T>
+struct NodeEntry {
+  T tn;
+  NodeRef ref;
+};
 
 template <typename T>
 struct alignas(64) WideNode {
@@ -82,11 +90,20 @@ struct WideBvh {
 using WideBvhf = WideBvh<float>;
 using WideBvhd = WideBvh<double>;
 
+// The wide BVH of the scene's non-degenerate triangles (degenerate in T: never hit), built
+// directly 8-wide by Embree's binned SAH builder (rtcBuildBVH, parallel); where that cannot be
+// used (coordinates beyond kEmbreeBuildMaxCoord, or opts.embree_builder off), Pierce's own binary
+// SAH build collapsed to eight wide.
+template <typename T>
+WideBvh<T> build_wide_bvh(const Scene& scene, const BvhBuildOptions& opts = {});
+
 // Collapses a binary BVH: each wide node takes the binary children with the largest surface area
 // apart until it holds eight; a subtree of at most eight triangles becomes one leaf block.
 template <typename T>
 WideBvh<T> build_wide_bvh(const Bvh<T>& binary);
 
+extern template WideBvh<float> build_wide_bvh<float>(const Scene&, const BvhBuildOptions&);
+extern template WideBvh<double> build_wide_bvh<double>(const Scene&, const BvhBuildOptions&);
 extern template WideBvh<float> build_wide_bvh<float>(const Bvh<float>&);
 extern template WideBvh<double> build_wide_bvh<double>(const Bvh<double>&);
 

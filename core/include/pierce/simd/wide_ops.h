@@ -1,8 +1,12 @@
 #pragma once
-// The two SIMD operations of the wide-BVH traversal, at each instruction-set level:
+// The SIMD operations of the wide-BVH traversal, at each instruction-set level:
 //  - node_hits: slab test of a node's eight child boxes against [lo, hi]; the result (mask, entry
 //    distances, child references) comes in the node's near-to-far order for the ray's octant;
-//  - tri_candidates: lanes of a leaf block that the exact triangle test may accept.
+//  - push_hits: the same test, with the children that pass stored onto a depth-first stack far to
+//    near in two SIMD stores (compressed with AVX-512, left-packed by a table with AVX2), so the
+//    loop neither branches per child nor sorts;
+//  - tri_candidates: lanes of a leaf block that the exact triangle test may accept, and (SIMD
+//    levels) every lane's edge functions, which the scalar test then takes instead of recomputing.
 // Both are bit-for-bit the scalar arithmetic of slab.h and triangle.h, lane by lane: the same
 // operations in the same order (the project builds with -ffp-contract=off, so nothing is fused),
 // min/max with the scalar code's NaN behaviour, ordered compares. So the box test keeps its
@@ -51,6 +55,17 @@ struct ScalarOps {
     }
     return mask;
   }
+  // The children that pass, stored at `top` far to near (the nearest last); returns how many.
+  std::uint32_t push_hits(const WideNode<T>& n, T lo, T hi, NodeEntry<T>* top) const {
+    T tn[kWideArity];
+    NodeRef child[kWideArity];
+    const std::uint32_t mask = node_hits(n, lo, hi, tn, child);
+    std::uint32_t count = 0;
+    for (int k = kWideArity - 1; k >= 0; --k)
+      if (mask >> k & 1) top[count++] = {tn[k], child[k]};
+    return count;
+  }
+  static constexpr bool kEdges = false;  // tri_candidates leaves the edge functions to the scalar test
   std::uint32_t tri_candidates(const TriBlock<T>& b) const { return b.valid; }
 };
 
@@ -63,6 +78,41 @@ __attribute__((target("avx2"))) inline __m256i rank_slots(std::uint32_t order) {
   return _mm256_and_si256(_mm256_srlv_epi32(_mm256_set1_epi32(int(order)), shifts), _mm256_set1_epi32(7));
 }
 
+// Lane k of the result: the slot ranked (7-k)-th, so lanes run far to near.
+__attribute__((target("avx2"))) inline __m256i rank_slots_far_to_near(std::uint32_t order) {
+  const __m256i shifts = _mm256_setr_epi32(21, 18, 15, 12, 9, 6, 3, 0);
+  return _mm256_and_si256(_mm256_srlv_epi32(_mm256_set1_epi32(int(order)), shifts), _mm256_set1_epi32(7));
+}
+
+// The eight (tn, child) entries of a node in lane order, as NodeEntry<float> pairs: entries 0-3 in
+// `first`, 4-7 in `second`.
+__attribute__((target("avx2"))) inline void entry_pairs(__m256 tn, __m256i child, __m256i& first, __m256i& second) {
+  const __m256i t = _mm256_castps_si256(tn);
+  const __m256i lo = _mm256_unpacklo_epi32(t, child), hi = _mm256_unpackhi_epi32(t, child);
+  first = _mm256_permute2x128_si256(lo, hi, 0x20);
+  second = _mm256_permute2x128_si256(lo, hi, 0x31);
+}
+
+// Left-packing four 64-bit entries by a 4-bit mask with one permute (AVX2 has no compress): the
+// dword indices that move the selected entries to the front.
+struct LeftPack4 {
+  alignas(32) std::int32_t idx[16][8];
+  constexpr LeftPack4() : idx{} {
+    for (int m = 0; m < 16; ++m) {
+      int k = 0;
+      for (int e = 0; e < 4; ++e)
+        if (m >> e & 1) idx[m][2 * k] = 2 * e, idx[m][2 * k + 1] = 2 * e + 1, ++k;
+      for (; k < 4; ++k) idx[m][2 * k] = 0, idx[m][2 * k + 1] = 1;
+    }
+  }
+};
+inline constexpr LeftPack4 kLeftPack4{};
+
+// The sheared edge functions of a leaf block's lanes, as the SIMD test computed them.
+struct BlockEdges {
+  alignas(32) float U[kBlockLanes], V[kBlockLanes], W[kBlockLanes];
+};
+
 // What both SIMD levels precompute from the ray.
 struct SimdRay {
   __m256 org[3], inv[3];
@@ -70,6 +120,7 @@ struct SimdRay {
   __m256 okx, oky, okz, sx, sy;  // triangle test: origin in the shear frame's axes, shear constants
   std::uint32_t near_offset[3], far_offset[3];  // byte offsets of the near and far planes in a WideNode
   bool zero[3];
+  bool any_zero;  // a direction component is zero: the slab test's parallel-axis path
   int oct, kx, ky, kz;
 
   __attribute__((target("avx2"))) explicit SimdRay(const TraversalRay<float>& r) {
@@ -79,10 +130,13 @@ struct SimdRay {
       zero[a] = r.zero[a];
       const auto lo = std::uint32_t(offsetof(WideNode<float>, lo) + sizeof(float) * kWideArity * std::size_t(a));
       const auto hi = std::uint32_t(offsetof(WideNode<float>, hi) + sizeof(float) * kWideArity * std::size_t(a));
-      // slab(): t0 from lo, t1 from hi, swapped where inv < 0.
-      near_offset[a] = r.inv[a] < 0.0f ? hi : lo;
-      far_offset[a] = r.inv[a] < 0.0f ? lo : hi;
+      // slab(): t0 from lo, t1 from hi, swapped where inv < 0 (arithmetic, not a branch: random
+      // directions would mispredict it).
+      const std::uint32_t swapped = r.inv[a] < 0.0f;
+      near_offset[a] = lo + swapped * (hi - lo);
+      far_offset[a] = hi - swapped * (hi - lo);
     }
+    any_zero = zero[0] || zero[1] || zero[2];
     pad = _mm256_set1_ps(r.pad);
     kx = r.kx, ky = r.ky, kz = r.kz;
     okx = _mm256_set1_ps(r.org[kx]), oky = _mm256_set1_ps(r.org[ky]), okz = _mm256_set1_ps(r.org[kz]);
@@ -97,6 +151,19 @@ struct SimdRay {
   // Entry and exit distances of the eight boxes (slab(): max/min with its NaN behaviour); `outside`
   // gets the lanes a parallel axis misses.
   __attribute__((target("avx2"))) void slabs(const WideNode<float>& n, __m256& tn, __m256& tf, __m256& outside) const {
+    if (!any_zero) [[likely]] {
+      // The loop below, unrolled for a ray with no parallel axis.
+      tn = _mm256_set1_ps(-std::numeric_limits<float>::infinity());
+      tf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
+      outside = _mm256_setzero_ps();
+      for (int a = 0; a < 3; ++a) {
+        const __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(plane(n, near_offset[a])), org[a]), inv[a]);
+        const __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(plane(n, far_offset[a])), org[a]), inv[a]);
+        tn = _mm256_max_ps(t0, tn);
+        tf = _mm256_min_ps(t1, tf);
+      }
+      return;
+    }
     tn = _mm256_set1_ps(-std::numeric_limits<float>::infinity());
     tf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
     outside = _mm256_setzero_ps();
@@ -127,15 +194,18 @@ struct SimdRay {
     V = _mm256_sub_ps(_mm256_mul_ps(px[0], py[2]), _mm256_mul_ps(py[0], px[2]));
     W = _mm256_sub_ps(_mm256_mul_ps(px[1], py[0]), _mm256_mul_ps(py[1], px[0]));
   }
+
 };
 
 struct Avx2Ops {
+  static constexpr bool kEdges = true;  // tri_candidates also gives every lane's U, V, W
   SimdRay ray;
   __attribute__((target("avx2"))) explicit Avx2Ops(const TraversalRay<float>& r) : ray(r) {}
 
-  __attribute__((target("avx2"))) std::uint32_t node_hits(const WideNode<float>& n, float lo, float hi, float* tn_out,
-                                                          NodeRef* child_out) const {
-    __m256 tn, tf, outside;
+  // Entry distances by slot; the result has all bits set in the lanes of the children that pass.
+  __attribute__((target("avx2"))) __m256 slot_hits(const WideNode<float>& n, std::uint32_t order, float lo, float hi,
+                                                   __m256& tn) const {
+    __m256 tf, outside;
     ray.slabs(n, tn, tf, outside);
     const __m256 up = _mm256_mul_ps(tf, _mm256_set1_ps(kWidenUp));
     const __m256 down = _mm256_mul_ps(tf, _mm256_set1_ps(kWidenDown));
@@ -144,10 +214,16 @@ struct Avx2Ops {
     const __m256 ok = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(tn, wf, _CMP_LE_OQ),
                                                   _mm256_cmp_ps(tn, _mm256_set1_ps(hi), _CMP_LE_OQ)),
                                     _mm256_cmp_ps(wf, _mm256_set1_ps(lo), _CMP_GE_OQ));
-    const std::uint32_t order = n.order[ray.oct];
     const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
     const __m256i valid = _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(order >> 24)), bits), bits);
-    const __m256 pass = _mm256_and_ps(_mm256_andnot_ps(outside, ok), _mm256_castsi256_ps(valid));
+    return _mm256_and_ps(_mm256_andnot_ps(outside, ok), _mm256_castsi256_ps(valid));
+  }
+
+  __attribute__((target("avx2"))) std::uint32_t node_hits(const WideNode<float>& n, float lo, float hi, float* tn_out,
+                                                          NodeRef* child_out) const {
+    const std::uint32_t order = n.order[ray.oct];
+    __m256 tn;
+    const __m256 pass = slot_hits(n, order, lo, hi, tn);
     const __m256i rank = rank_slots(order);
     _mm256_store_ps(tn_out, _mm256_permutevar8x32_ps(tn, rank));
     _mm256_store_si256(reinterpret_cast<__m256i*>(child_out),
@@ -155,7 +231,29 @@ struct Avx2Ops {
     return std::uint32_t(_mm256_movemask_ps(_mm256_permutevar8x32_ps(pass, rank)));
   }
 
-  __attribute__((target("avx2"))) std::uint32_t tri_candidates(const TriBlock<float>& b) const {
+  // ScalarOps::push_hits: two left-packed stores of four entries each.
+  __attribute__((target("avx2"))) std::uint32_t push_hits(const WideNode<float>& n, float lo, float hi,
+                                                          NodeEntry<float>* top) const {
+    const std::uint32_t order = n.order[ray.oct];
+    __m256 tn;
+    const __m256 pass = slot_hits(n, order, lo, hi, tn);
+    const __m256i rank = rank_slots_far_to_near(order);
+    const auto mask = std::uint32_t(_mm256_movemask_ps(_mm256_permutevar8x32_ps(pass, rank)));
+    if (mask == 0) return 0;
+    __m256i first, second;
+    entry_pairs(_mm256_permutevar8x32_ps(tn, rank),
+                _mm256_permutevar8x32_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(n.child)), rank), first,
+                second);
+    const std::uint32_t m0 = mask & 15u, m1 = mask >> 4;
+    const auto n0 = std::uint32_t(__builtin_popcount(m0));
+    auto* out = reinterpret_cast<__m256i*>(top);
+    _mm256_storeu_si256(out, _mm256_permutevar8x32_epi32(first, _mm256_load_si256(reinterpret_cast<const __m256i*>(kLeftPack4.idx[m0]))));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(top + n0),
+                        _mm256_permutevar8x32_epi32(second, _mm256_load_si256(reinterpret_cast<const __m256i*>(kLeftPack4.idx[m1]))));
+    return n0 + std::uint32_t(__builtin_popcount(m1));
+  }
+
+  __attribute__((target("avx2"))) std::uint32_t tri_candidates(const TriBlock<float>& b, BlockEdges& edges_out) const {
     __m256 U, V, W;
     ray.edges(b, U, V, W);
     const __m256 zero = _mm256_setzero_ps();
@@ -171,6 +269,7 @@ struct Avx2Ops {
     // Exact path for zero or non-finite edge functions (decided there), inside for equal signs.
     const std::uint32_t exact_path = std::uint32_t(_mm256_movemask_ps(any_zero)) | (~std::uint32_t(_mm256_movemask_ps(finite)) & 0xFFu);
     const std::uint32_t inside = std::uint32_t(_mm256_movemask_ps(_mm256_or_ps(all_pos, all_neg)));
+    _mm256_store_ps(edges_out.U, U), _mm256_store_ps(edges_out.V, V), _mm256_store_ps(edges_out.W, W);
     return (exact_path | inside) & b.valid;
   }
 };
@@ -178,13 +277,13 @@ struct Avx2Ops {
 #define PIERCE_AVX512_TARGET "avx2,avx512f,avx512vl,avx512bw,avx512dq,bmi,bmi2"
 
 struct Avx512Ops {
+  static constexpr bool kEdges = true;
   SimdRay ray;
   __attribute__((target(PIERCE_AVX512_TARGET))) explicit Avx512Ops(const TraversalRay<float>& r) : ray(r) {}
 
-  __attribute__((target(PIERCE_AVX512_TARGET))) std::uint32_t node_hits(const WideNode<float>& n, float lo, float hi,
-                                                                        float* tn_out, NodeRef* child_out) const {
-    const std::uint32_t order = n.order[ray.oct];
-    __m256 tn, tf, outside;
+  __attribute__((target(PIERCE_AVX512_TARGET))) __mmask8 slot_hits(const WideNode<float>& n, std::uint32_t order,
+                                                                   float lo, float hi, __m256& tn) const {
+    __m256 tf, outside;
     ray.slabs(n, tn, tf, outside);
     const __mmask8 inside = __mmask8(order >> 24) & ~_mm256_movepi32_mask(_mm256_castps_si256(outside));
     const __mmask8 non_negative = _mm256_cmp_ps_mask(tf, _mm256_setzero_ps(), _CMP_GE_OQ);
@@ -193,7 +292,14 @@ struct Avx512Ops {
     const __m256 wf = _mm256_add_ps(scaled, ray.pad);
     __mmask8 ok = _mm256_mask_cmp_ps_mask(inside, tn, wf, _CMP_LE_OQ);
     ok = _mm256_mask_cmp_ps_mask(ok, tn, _mm256_set1_ps(hi), _CMP_LE_OQ);
-    ok = _mm256_mask_cmp_ps_mask(ok, wf, _mm256_set1_ps(lo), _CMP_GE_OQ);
+    return _mm256_mask_cmp_ps_mask(ok, wf, _mm256_set1_ps(lo), _CMP_GE_OQ);
+  }
+
+  __attribute__((target(PIERCE_AVX512_TARGET))) std::uint32_t node_hits(const WideNode<float>& n, float lo, float hi,
+                                                                        float* tn_out, NodeRef* child_out) const {
+    const std::uint32_t order = n.order[ray.oct];
+    __m256 tn;
+    const __mmask8 ok = slot_hits(n, order, lo, hi, tn);
     const __m256i rank = rank_slots(order);
     _mm256_store_ps(tn_out, _mm256_permutexvar_ps(rank, tn));
     _mm256_store_si256(reinterpret_cast<__m256i*>(child_out),
@@ -201,7 +307,28 @@ struct Avx512Ops {
     return _mm256_movepi32_mask(_mm256_permutexvar_epi32(rank, _mm256_movm_epi32(ok)));
   }
 
-  __attribute__((target(PIERCE_AVX512_TARGET))) std::uint32_t tri_candidates(const TriBlock<float>& b) const {
+  // ScalarOps::push_hits: compressed in registers (a compress straight to memory is slow on Zen 4).
+  __attribute__((target(PIERCE_AVX512_TARGET))) std::uint32_t push_hits(const WideNode<float>& n, float lo, float hi,
+                                                                        NodeEntry<float>* top) const {
+    const std::uint32_t order = n.order[ray.oct];
+    __m256 tn;
+    const __mmask8 ok = slot_hits(n, order, lo, hi, tn);
+    if (ok == 0) return 0;
+    const __m256i rank = rank_slots_far_to_near(order);
+    const std::uint32_t mask = _mm256_movepi32_mask(_mm256_permutexvar_epi32(rank, _mm256_movm_epi32(ok)));
+    __m256i first, second;
+    entry_pairs(_mm256_permutexvar_ps(rank, tn),
+                _mm256_permutexvar_epi32(rank, _mm256_load_si256(reinterpret_cast<const __m256i*>(n.child))), first,
+                second);
+    const auto m0 = __mmask8(mask & 15u), m1 = __mmask8(mask >> 4);
+    const auto n0 = std::uint32_t(__builtin_popcount(m0));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(top), _mm256_maskz_compress_epi64(m0, first));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(top + n0), _mm256_maskz_compress_epi64(m1, second));
+    return n0 + std::uint32_t(__builtin_popcount(m1));
+  }
+
+  __attribute__((target(PIERCE_AVX512_TARGET))) std::uint32_t tri_candidates(const TriBlock<float>& b,
+                                                                             BlockEdges& edges_out) const {
     __m256 U, V, W;
     ray.edges(b, U, V, W);
     const __m256 zero = _mm256_setzero_ps();
@@ -214,6 +341,7 @@ struct Avx512Ops {
         _mm256_mask_cmp_ps_mask(_mm256_cmp_ps_mask(U, zero, _CMP_GT_OQ), V, zero, _CMP_GT_OQ), W, zero, _CMP_GT_OQ);
     const __mmask8 all_neg = _mm256_mask_cmp_ps_mask(
         _mm256_mask_cmp_ps_mask(_mm256_cmp_ps_mask(U, zero, _CMP_LT_OQ), V, zero, _CMP_LT_OQ), W, zero, _CMP_LT_OQ);
+    _mm256_store_ps(edges_out.U, U), _mm256_store_ps(edges_out.V, V), _mm256_store_ps(edges_out.W, W);
     return std::uint32_t(any_zero | __mmask8(~finite) | all_pos | all_neg) & b.valid;
   }
 };

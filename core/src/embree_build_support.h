@@ -1,0 +1,37 @@
+#pragma once
+// What Pierce's two uses of Embree's generic builder (rtcBuildBVH) share: the builder device and
+// the primitives' float boxes. Embree only chooses the partition; both builders recompute every
+// box exactly in precision T afterwards.
+#include <embree3/rtcore.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "pierce/bbox.h"
+
+namespace pierce::detail {
+
+// Stateless for rtcBuildBVH, so one device is shared by every build.
+inline RTCDevice builder_device() {
+  static const RTCDevice device = rtcNewDevice("threads=0");
+  return device;
+}
+
+// Float bounds containing x (exact for float input).
+inline float round_down(double x) {
+  const auto f = float(x);
+  return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+inline float round_up(double x) {
+  const auto f = float(x);
+  return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+
+template <typename T>
+RTCBuildPrimitive build_primitive(const BBox<T>& b, std::uint32_t id) {
+  return {round_down(double(b.lo.x)), round_down(double(b.lo.y)), round_down(double(b.lo.z)), 0,
+          round_up(double(b.hi.x)),   round_up(double(b.hi.y)),   round_up(double(b.hi.z)),   id};
+}
+
+}  // namespace pierce::detail

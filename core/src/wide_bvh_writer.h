@@ -1,0 +1,91 @@
+#pragma once
+// Writing the wide BVH's nodes and leaf blocks: shared by the direct 8-wide build
+// (wide_bvh_builder.cpp) and the collapse of a binary BVH (wide_bvh_collapse.cpp), so both
+// produce the same layout from the same boxes.
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <stdexcept>
+
+#include "pierce/wide_bvh.h"
+
+namespace pierce::detail {
+
+// Sets the `n` child boxes of `w` (slots 0..n-1; the rest empty, so they can never pass) and its
+// near-to-far order for each direction octant, ranked by the child box centres along
+// (+-1, +-1, +-1). The child references are left to the caller.
+template <typename T>
+void set_wide_boxes(WideNode<T>& w, const BBox<T>* boxes, int n) {
+  for (int a = 0; a < 3; ++a)
+    for (int s = 0; s < kWideArity; ++s) {
+      w.lo[a][s] = std::numeric_limits<T>::infinity();
+      w.hi[a][s] = -std::numeric_limits<T>::infinity();
+    }
+  for (int s = 0; s < kWideArity; ++s) w.child[s] = 0;
+  for (int s = 0; s < n; ++s)
+    for (int a = 0; a < 3; ++a) w.lo[a][s] = boxes[s].lo[a], w.hi[a][s] = boxes[s].hi[a];
+  const std::uint32_t valid = (1u << n) - 1;
+  for (int oct = 0; oct < 8; ++oct) {
+    std::array<int, kWideArity> slot{};
+    std::array<double, kWideArity> key{};
+    for (int s = 0; s < kWideArity; ++s) {
+      slot[s] = s;
+      key[s] = std::numeric_limits<double>::infinity();  // empty slots last
+      if (s >= n) continue;
+      key[s] = 0;
+      for (int a = 0; a < 3; ++a) {
+        const double c = 0.5 * (double(boxes[s].lo[a]) + double(boxes[s].hi[a]));
+        key[s] += (oct >> a & 1) ? -c : c;
+      }
+    }
+    // Insertion sort (stable, no allocation): eight entries.
+    for (int i = 1; i < kWideArity; ++i)
+      for (int j = i; j > 0 && key[slot[j]] < key[slot[j - 1]]; --j) std::swap(slot[j], slot[j - 1]);
+    std::uint32_t packed = valid << 24;
+    for (int k = 0; k < kWideArity; ++k) packed |= std::uint32_t(slot[k]) << (3 * k);
+    w.order[oct] = packed;
+  }
+}
+
+// Fills leaf blocks out.blocks[first, first + ceil(count / 8)) with the triangles tri(0..count-1)
+// (a Triangle<T> each, in that order), padding the last block with masked lanes, and returns the
+// leaf's reference and its exact box. The blocks must exist already (several leaves can then be
+// written in parallel).
+template <typename T, class TriangleAt>
+NodeRef write_leaf(WideBvh<T>& out, std::uint32_t first, std::size_t count, const TriangleAt& tri, BBox<T>& box) {
+  const auto nblocks = std::uint32_t((count + kBlockLanes - 1) / kBlockLanes);
+  for (std::uint32_t b = 0; b < nblocks; ++b) {
+    TriBlock<T>& blk = out.blocks[first + b];
+    blk = TriBlock<T>{};  // padding lanes: zero corners, never tested (valid)
+    for (int l = 0; l < kBlockLanes; ++l) {
+      blk.geom[l] = blk.prim[l] = kInvalidId;
+      const std::size_t k = std::size_t(b) * kBlockLanes + std::size_t(l);
+      if (k >= count) continue;
+      const Triangle<T> t = tri(k);
+      const Vec3<T> p[3] = {t.v0, t.v1, t.v2};
+      for (int c = 0; c < 3; ++c) {
+        box.extend(p[c]);
+        for (int a = 0; a < 3; ++a) blk.v[c][a][l] = p[c][a];
+      }
+      blk.geom[l] = t.geom;
+      blk.prim[l] = t.prim;
+      blk.sum[l] = sum_order(t.v0, t.v1, t.v2);
+      blk.valid |= 1u << l;
+    }
+  }
+  return make_leaf_ref(first, nblocks);
+}
+
+// Blocks a leaf of `count` triangles takes; throws where the reference cannot hold them.
+inline std::uint32_t leaf_blocks_for(std::size_t count) {
+  const auto nblocks = std::uint32_t((count + kBlockLanes - 1) / kBlockLanes);
+  if (nblocks > kMaxLeafBlocks)
+    throw std::length_error("wide BVH: a leaf of more than 512 triangles (build with a smaller max_leaf_size)");
+  return nblocks;
+}
+
+inline void check_block_count(std::size_t blocks) {
+  if (blocks > kMaxBlocks) throw std::length_error("wide BVH: more than 2^28 triangles");
+}
+
+}  // namespace pierce::detail
