@@ -219,10 +219,10 @@ TEST(CostHeatmap, PixelsShowTheCountingKernelsWorkPerRay) {
     EXPECT_DOUBLE_EQ(stats.mean, sum / double(cost.size()));
     EXPECT_EQ(img.pixels_hit, working);
     EXPECT_EQ(img.range_max, max);
-    // The frame has a margin where rays miss the scene's box: no steps, no primitive tests; only
-    // the root's box test, which every ray does.
-    if (metric == CostMetric::node_tests) EXPECT_EQ(working, cost.size());
-    else EXPECT_LT(working, cost.size());
+    // The frame has a margin where rays miss the scene's box: no primitive tests there, only the
+    // root's node test (one step), which every ray does.
+    if (metric == CostMetric::prim_tests) EXPECT_LT(working, cost.size());
+    else EXPECT_EQ(working, cost.size());
     for (int y = 0; y < fr.height; ++y)
       for (int x = 0; x < fr.view_width; ++x) {
         const double c = cost[std::size_t(y * fr.view_width + x)];
