@@ -181,8 +181,8 @@ struct Builder {
   }
 
   // The tree without the unused slots, in depth-first order (siblings stay adjacent).
-  std::vector<BvhNode<T>> compacted() const {
-    std::vector<BvhNode<T>> out;
+  HugePageVector<BvhNode<T>> compacted() const {
+    HugePageVector<BvhNode<T>> out;
     out.push_back(node(0));
     struct Todo {
       std::uint32_t old_index, new_index;
@@ -236,7 +236,7 @@ void* embree_create_leaf(RTCThreadLocalAllocator alloc, const RTCBuildPrimitive*
 // refs in leaf order. False (and nothing written) if Embree failed or lost or repeated a primitive,
 // or made a leaf beyond what the wide collapse takes.
 template <typename T>
-bool build_with_embree(const std::vector<Ref<T>>& refs, const BvhBuildOptions& opts, std::vector<BvhNode<T>>& nodes,
+bool build_with_embree(const std::vector<Ref<T>>& refs, const BvhBuildOptions& opts, HugePageVector<BvhNode<T>>& nodes,
                        std::vector<std::uint32_t>& order) {
   const RTCDevice device = detail::builder_device();
   if (device == nullptr) return false;
@@ -261,7 +261,7 @@ bool build_with_embree(const std::vector<Ref<T>>& refs, const BvhBuildOptions& o
   void* root = rtcBuildBVH(&args);
   bool ok = root != nullptr && rtcGetDeviceError(device) == RTC_ERROR_NONE;
 
-  std::vector<BvhNode<T>> out;
+  HugePageVector<BvhNode<T>> out;
   std::vector<std::uint32_t> leaf_order;
   if (ok) {
     out.reserve(refs.size());

@@ -16,7 +16,7 @@ void check(RTCDevice device, const char* what) {
 }
 
 struct BoundsData {
-  const std::vector<Triangle<float>>* tris;
+  const HugePageVector<Triangle<float>>* tris;
   float pad;
 };
 
@@ -33,7 +33,7 @@ void occluded_noop(const RTCOccludedFunctionNArguments*) {}
 
 }  // namespace
 
-EmbreeAccel::EmbreeAccel(const Scene& scene, const std::vector<Triangle<float>>& tris)
+EmbreeAccel::EmbreeAccel(const Scene& scene, const HugePageVector<Triangle<float>>& tris)
     : scene_(&scene), tris_(&tris) {
   device_ = rtcNewDevice("threads=0");
   if (!device_) throw std::runtime_error("Embree: rtcNewDevice failed");

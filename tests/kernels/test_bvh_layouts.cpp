@@ -26,7 +26,7 @@ Bvhf random_bvh(const Scene& scene, std::mt19937_64& rng, std::uint32_t max_leaf
     }
   }
   std::shuffle(tris.begin(), tris.end(), rng);
-  bvh.tris = tris;
+  bvh.tris.assign(tris.begin(), tris.end());
   if (tris.empty()) return bvh;
   bvh.nodes.emplace_back();
   struct Todo {
@@ -195,7 +195,7 @@ TEST(BvhLayouts, BufferedReleaseAfterOverflow) {
     return n;
   };
   // Node indices: 0 root, 1 M, 2 Q, 3 L, 4 R, 5 L0, 6 L', 7 L1, 8 L2.
-  std::vector<BvhNode<float>> nodes(9);
+  HugePageVector<BvhNode<float>> nodes(9);
   nodes[5] = leaf(0, 8), nodes[7] = leaf(8, 8), nodes[8] = leaf(16, 8);
   nodes[6] = join(nodes[7], nodes[8], 7);
   nodes[3] = join(nodes[5], nodes[6], 5);

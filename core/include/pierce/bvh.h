@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "pierce/bbox.h"
+#include "pierce/huge_page_allocator.h"
 #include "pierce/triangle.h"
 
 namespace pierce {
@@ -19,8 +20,8 @@ struct BvhNode {
 
 template <typename T>
 struct Bvh {
-  std::vector<BvhNode<T>> nodes;  // nodes[0] is the root when !empty()
-  std::vector<Triangle<T>> tris;
+  HugePageVector<BvhNode<T>> nodes;  // nodes[0] is the root when !empty()
+  HugePageVector<Triangle<T>> tris;
   double scene_max_abs = 0;       // for TraversalRay::make
 
   bool empty() const { return tris.empty(); }

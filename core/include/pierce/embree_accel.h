@@ -18,7 +18,7 @@ namespace pierce {
 class EmbreeAccel {
  public:
   // `tris` must outlive this object (it is the float BVH's triangle array).
-  EmbreeAccel(const Scene& scene, const std::vector<Triangle<float>>& tris);
+  EmbreeAccel(const Scene& scene, const HugePageVector<Triangle<float>>& tris);
   ~EmbreeAccel();
   EmbreeAccel(const EmbreeAccel&) = delete;
   EmbreeAccel& operator=(const EmbreeAccel&) = delete;
@@ -26,13 +26,13 @@ class EmbreeAccel {
   RTCScene exact() const { return exact_; }
   RTCScene native() const { return native_; }
   const Scene& scene() const { return *scene_; }
-  const std::vector<Triangle<float>>& tris() const { return *tris_; }
+  const HugePageVector<Triangle<float>>& tris() const { return *tris_; }
   double scene_max_abs() const { return max_abs_; }
   float box_pad() const { return pad_; }
 
  private:
   const Scene* scene_;
-  const std::vector<Triangle<float>>* tris_;
+  const HugePageVector<Triangle<float>>* tris_;
   double max_abs_ = 0;
   float pad_ = 0;
   RTCDevice device_ = nullptr;

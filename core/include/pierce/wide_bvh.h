@@ -14,6 +14,7 @@
 #include "pierce/bvh.h"
 #include "pierce/bvh_builder.h"
 #include "pierce/hit.h"
+#include "pierce/huge_page_allocator.h"
 #include "pierce/triangle.h"
 
 namespace pierce {
@@ -71,8 +72,10 @@ struct alignas(64) TriBlock {
 
 template <typename T>
 struct WideBvh {
-  std::vector<WideNode<T>> nodes;  // nodes[0] is the root when root is not a leaf
-  std::vector<TriBlock<T>> blocks;
+  // In huge pages where the system gives them (huge_page_allocator.h): a ray reads a few nodes and
+  // blocks spread over both arrays.
+  HugePageVector<WideNode<T>> nodes;  // nodes[0] is the root when root is not a leaf
+  HugePageVector<TriBlock<T>> blocks;
   BBox<T> bounds;                  // of every triangle: the root's box
   NodeRef root = make_leaf_ref(0, 1);
   std::uint32_t depth = 0;         // inner levels on the longest root-to-leaf path

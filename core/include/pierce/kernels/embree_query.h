@@ -10,6 +10,7 @@
 
 #include "pierce/counters.h"
 #include "pierce/hit.h"
+#include "pierce/huge_page_allocator.h"
 #include "pierce/triangle.h"
 
 namespace pierce {
@@ -17,7 +18,7 @@ namespace pierce {
 struct EmbreeQuery {
   RTCIntersectContext ctx;  // must stay first: Embree hands back a pointer to it
   enum class Mode { restart, all, closest_n } mode = Mode::restart;
-  const std::vector<Triangle<float>>* tris = nullptr;
+  const HugePageVector<Triangle<float>>* tris = nullptr;
   TraversalRay<float> ray;
   HitOrder order;
   double t_base = 0;   // Embree's t = (Pierce's t - t_base) * t_scale
