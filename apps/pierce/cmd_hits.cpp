@@ -20,6 +20,7 @@
 #include "pierce/error.h"
 #include "pierce/io/ray_source.h"
 #include "pierce/kernel.h"
+#include "pierce/kernel_names.h"
 #include "progress.h"
 
 namespace pierce::cli {
@@ -44,11 +45,7 @@ constexpr int kExitExactDisagreement = 3;
 
 using Results = std::vector<std::vector<Hit>>;
 
-std::string kernel_list() {
-  std::string s;
-  for (KernelKind k : kAllKernels) s += std::string(kernel_name(k)) + ", ";
-  return s + "all";
-}
+std::string kernel_list() { return kernel_name_list() + ", all"; }
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -331,16 +328,13 @@ std::function<int()> register_hits(CLI::App& app) {
   cmd->add_option("--out", opts->out, "Write the CSV here instead of stdout (with --kernel all: the consensus hits)");
   cmd->add_option("--json", opts->json,
                   "With --kernel all: also write the table (time and differences per kernel) as JSON here");
-  cmd->add_flag("--force", opts->force, "Overwrite an existing --out, --json or --heatmap file");
-  cmd->add_flag("--progress", opts->progress, "Show a progress bar on stderr even when it is not a terminal");
+  add_force_and_progress_flags(cmd, opts->force, opts->progress, "an existing --out, --json or --heatmap file");
   cmd->add_option("--heatmap", opts->heatmap,
                   "Instead of --rays: a PNG heat map of the kernel's traversal work, one ray per pixel "
                   "(Gribble 2016), for --max-hits hits per ray");
   cmd->add_option("--heatmap-count", opts->heatmap_count, "What the heat map counts: " + cost_metric_list())
       ->capture_default_str();
-  cmd->add_option("--png-size", opts->png_size, "Heat map size WIDTHxHEIGHT in pixels")->capture_default_str();
-  cmd->add_option("--png-view", opts->png_view, "Direction the heat map's camera looks along, x,y,z (z is up)")
-      ->capture_default_str();
+  add_camera_options(cmd, opts->png_size, opts->png_view, "Heat map");
   return [opts] { return run_hits(*opts); };
 }
 

@@ -1,19 +1,15 @@
 // The `pierce shot`, `pierce gqa` and `pierce run` commands end to end: output formats, JSON keys,
 // error messages and exit codes, no clobbering without --force.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <atomic>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include "cli_fixture.h"
 #include "csg_test_scenes.h"
-#include "pierce/analysis/effect_scene.h"
+#include "effect_scene.h"
 #include "pierce/generators.h"
 #include "png_decode.h"
 
@@ -22,45 +18,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int code = -1;
-  std::string out, err;
-};
+using csgtest::Outcome;
 
-class CsgCli : public ::testing::Test {
+class CsgCli : public csgtest::CliTest {
  protected:
-  void SetUp() override {
-    static std::atomic<int> counter{0};
-    dir_ = fs::temp_directory_path() /
-           ("pierce_csg_cli_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
-  void write(const std::string& name, const std::string& text) const { std::ofstream(path(name)) << text; }
-
-  static std::string read(const std::string& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
-
-  // Runs `pierce ARGS` in the temporary directory.
-  Outcome pierce(const std::string& args) const {
-    const std::string out = path("stdout.txt"), err = path("stderr.txt");
-    const std::string cmd = "cd '" + dir_.string() + "' && '" PIERCE_EXE "' " + args + " > '" + out + "' 2> '" + err + "'";
-    const int status = std::system(cmd.c_str());
-    Outcome r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = read(out);
-    r.err = read(err);
-    return r;
-  }
-
-  fs::path dir_;
+  CsgCli() : CliTest("pierce_csg_cli") {}
 };
 
 std::string boxes_obj() {
@@ -203,14 +165,14 @@ TEST_F(CsgCli, RunXrayImageMatchesBeerLambertPixelByPixel) {
   ASSERT_EQ(png.width, 24u);
   ASSERT_EQ(png.height, 20u);
   EXPECT_EQ(png.bits, 16);
-  analysis::CameraSpec cam;
+  cli::CameraSpec cam;
   cam.center = {0.5, 0.5, -1};
   cam.direction = {0.35, 0.15, 1};
   cam.up = {0, 1, 0};
   cam.width = cam.height = 1.6;
   cam.pixels_x = 24;
   cam.pixels_y = 20;
-  const std::vector<Ray> rays = analysis::camera_rays(cam);
+  const std::vector<Ray> rays = cli::camera_rays(cam);
   const double q = 1.0 / 65535;  // 16-bit quantisation
   int below = 0, above = 0, dark = 0;
   for (std::uint32_t y = 0; y < 20; ++y)

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "csg_test_scenes.h"
-#include "pierce/analysis/effect_scene.h"
+#include "effect_scene.h"
 #include "pierce/analysis/effects.h"
 #include "pierce/error.h"
 
@@ -15,6 +15,14 @@ namespace {
 
 using csgtest::make_world;
 using csgtest::World;
+// The scene-file format of `pierce run` is the CLI's (apps/pierce/effect_scene.h).
+using cli::bind_effect_scene;
+using cli::camera_rays;
+using cli::CameraSpec;
+using cli::EffectSceneSpec;
+using cli::make_scene_rays;
+using cli::parse_effect_scene;
+using cli::SceneRays;
 
 constexpr int kPlates = 20;
 constexpr double kPlateT = 0.1;

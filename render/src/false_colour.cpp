@@ -1,4 +1,4 @@
-#include "pierce/io/false_colour.h"
+#include "pierce/render/false_colour.h"
 
 #include <algorithm>
 #include <array>
@@ -9,7 +9,7 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include "pierce/error.h"
-#include "pierce/io/image_writer.h"
+#include "pierce/render/image_writer.h"
 #include "pierce/parallel_for_items.h"
 
 namespace pierce {
