@@ -55,6 +55,13 @@ class CliTest : public ::testing::Test {
     return r;
   }
 
+  // `pierce ARGS` fails as bad input (exit code 2) with `text` in its message.
+  void expect_input_error(const std::string& args, const std::string& text) const {
+    const Outcome r = pierce(args);
+    EXPECT_EQ(r.code, 2) << args;
+    EXPECT_NE(r.err.find(text), std::string::npos) << args << " -> " << r.err;
+  }
+
   std::filesystem::path dir_;
 
  private:

@@ -157,9 +157,7 @@ TEST_F(ClassifyCli, PointOptionsTableAndJson) {
   EXPECT_GT(j["tolerance"].get<double>(), 0);
 
   // No overwrite without --force.
-  r = pierce("classify boxes.obj --point 0,0,0 -o out.json");
-  EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("--force"), std::string::npos) << r.err;
+  expect_input_error("classify boxes.obj --point 0,0,0 -o out.json", "--force");
   EXPECT_EQ(nlohmann::json::parse(read(path("out.json")))["points"][0]["at"][0], 1.5);
   r = pierce("classify boxes.obj --point 0,0,0 -o out.json --force");
   EXPECT_EQ(r.code, 0) << r.err;
@@ -185,21 +183,11 @@ TEST_F(ClassifyCli, BadPointsAreReportedWithFileAndLine) {
     EXPECT_NE(r.err.find(c.message), std::string::npos) << c.csv << " -> " << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
   }
-  Outcome r = pierce("classify boxes.obj --points missing.csv");
-  EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("missing.csv: cannot open"), std::string::npos) << r.err;
-  r = pierce("classify boxes.obj --point 1,2");
-  EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("--point '1,2': expected three"), std::string::npos) << r.err;
-  r = pierce("classify boxes.obj");
-  EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("give either --point"), std::string::npos) << r.err;
-  r = pierce("classify boxes.obj --point 0,0,0 --csg 'union(a, zz)'");
-  EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("unknown solid name"), std::string::npos) << r.err;
-  r = pierce("classify boxes.obj --point 0,0,0 --format xml");
-  EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("--format 'xml'"), std::string::npos) << r.err;
+  expect_input_error("classify boxes.obj --points missing.csv", "missing.csv: cannot open");
+  expect_input_error("classify boxes.obj --point 1,2", "--point '1,2': expected three");
+  expect_input_error("classify boxes.obj", "give either --point");
+  expect_input_error("classify boxes.obj --point 0,0,0 --csg 'union(a, zz)'", "unknown solid name");
+  expect_input_error("classify boxes.obj --point 0,0,0 --format xml", "--format 'xml'");
 }
 
 }  // namespace
