@@ -240,12 +240,7 @@ int run_all(const Accel& accel, const std::vector<Ray>& rays, const HitsOptions&
   return disagreeing.empty() ? 0 : kExitExactDisagreement;
 }
 
-std::string cost_metric_list() {
-  std::string s;
-  for (CostMetric m : {CostMetric::traversal_steps, CostMetric::node_tests, CostMetric::prim_tests})
-    s += (s.empty() ? "" : ", ") + std::string(cost_metric_name(m));
-  return s;
-}
+std::string cost_metric_list() { return enum_name_list<CostMetric>(); }
 
 // --heatmap: the kernel's counting variant on one ray per pixel.
 int run_heatmap(const Accel& accel, KernelKind kind, CostMetric metric, const FalseColourOptions& fo,

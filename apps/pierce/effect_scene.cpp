@@ -149,11 +149,7 @@ CameraSpec read_camera(const Reader& r, const json& v, const std::string& where)
 void read_effect(const Reader& r, EffectSceneSpec& spec, const std::string& name, const json& params,
                  const std::string& where) {
   const std::optional<Effect> e = parse_effect(name);
-  if (!e) {
-    std::string list;
-    for (Effect x : kAllEffects) list += (list.empty() ? "" : ", ") + std::string(effect_name(x));
-    r.fail(where, "unknown effect '" + name + "' (expected " + list + ")");
-  }
+  if (!e) r.fail(where, "unknown effect '" + name + "' (expected " + enum_name_list<Effect>() + ")");
   EffectsConfig& cfg = spec.config;
   if (cfg.on(*e)) r.fail(where, "effect '" + name + "' requested twice");
   cfg.enable(*e);
