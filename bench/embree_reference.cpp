@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "pierce/embree_accel.h"
+
 namespace pierce::bench {
 
 namespace {
@@ -87,21 +89,7 @@ EmbreeReference::EmbreeReference(const Scene& scene, bool robust) {
   scene_ = rtcNewScene(device_);
   rtcSetSceneFlags(scene_, RTCSceneFlags(RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION |
                                          (robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE)));
-  for (const Geometry& geo : scene.geometries()) {
-    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                          3 * sizeof(float), geo.vertices.size()));
-    for (std::size_t i = 0; i < geo.vertices.size(); ++i)
-      v[3 * i] = float(geo.vertices[i].x), v[3 * i + 1] = float(geo.vertices[i].y),
-      v[3 * i + 2] = float(geo.vertices[i].z);
-    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                               3 * sizeof(unsigned), geo.triangles.size()));
-    for (std::size_t i = 0; i < geo.triangles.size(); ++i)
-      for (int k = 0; k < 3; ++k) idx[3 * i + k] = geo.triangles[i][k];
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(scene_, g);  // ids 0, 1, ... as Pierce's geometry ids
-    rtcReleaseGeometry(g);
-  }
+  attach_native_triangles(device_, scene_, scene);  // as Pierce's epsilon kernel sees them
   rtcCommitScene(scene_);
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (const RTCError err = rtcGetDeviceError(device_); err != RTC_ERROR_NONE)

@@ -29,12 +29,13 @@
 #include <thread>
 #include <vector>
 
+#include "bench_main.h"
 #include "bench_machine.h"
 #include "bench_scenes.h"
 #include "embree_reference.h"
 #include "pierce/bvh_builder.h"
-#include "pierce/io/false_colour.h"
 #include "pierce/kernel.h"
+#include "pierce/render/false_colour.h"
 
 namespace pierce::bench {
 namespace {
@@ -747,11 +748,4 @@ int run(int argc, char** argv) {
 }  // namespace
 }  // namespace pierce::bench
 
-int main(int argc, char** argv) {
-  try {
-    return pierce::bench::run(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return pierce::bench::guarded_main(argc, argv, pierce::bench::run); }

@@ -18,6 +18,7 @@
 #include <iostream>
 #include <string>
 
+#include "bench_main.h"
 #include "bench_machine.h"
 #include "embree_reference.h"
 #include "pierce/analysis/thickness.h"
@@ -159,11 +160,4 @@ int run(int argc, char** argv) {
 }  // namespace
 }  // namespace pierce::bench
 
-int main(int argc, char** argv) {
-  try {
-    return pierce::bench::run(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return pierce::bench::guarded_main(argc, argv, pierce::bench::run); }

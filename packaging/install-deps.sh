@@ -6,7 +6,7 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libembree-dev libtbb-dev libocct-data-exchange-dev
-  libgtest-dev libgmock-dev libcli11-dev nlohmann-json3-dev
+  libgtest-dev libgmock-dev libcli11-dev nlohmann-json3-dev libspng-dev
   qtbase5-dev paraview-dev python3-paraview
   libqt5svg5-dev qttools5-dev libqt5opengl5-dev qtxmlpatterns5-dev-tools
   libxml2-dev libexpat1-dev libavcodec-dev libavformat-dev libavutil-dev libswscale-dev libswresample-dev

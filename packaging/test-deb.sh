@@ -38,7 +38,7 @@ step "Depends: $depends"
 if tr ',|' '\n\n' <<<"$depends" | sed 's/(.*//; s/ //g' | grep -E -- '-dev(:|$)'; then
   fail "Depends names -dev packages"
 fi
-for p in libembree3-3 libtbb12 paraview python3 python3-numpy; do
+for p in libembree3-3 libtbb12 libspng0 paraview python3 python3-numpy; do
   tr ',|' '\n\n' <<<"$depends" | sed 's/(.*//; s/ //g' | grep -qx "$p" || fail "Depends lacks $p"
 done
 maint=$(dpkg-deb -f "$deb" Maintainer)   # "Name <email>"

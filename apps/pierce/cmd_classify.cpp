@@ -165,8 +165,7 @@ int run_classify(const ClassifyCli& o) {
   InterruptGuard guard;
   const std::string format = output_format(o);
   OutputFile::check_target(o.out, o.force);
-  const std::optional<KernelKind> kernel = parse_kernel(o.kernel);
-  if (!kernel || !is_exact(*kernel)) throw InputError("--kernel '" + o.kernel + "': not an exact kernel");
+  const KernelKind kernel = exact_kernel_option(o.kernel);
   if (!(o.tol >= 0) || !(o.tol < 1)) throw InputError("--tol must be in [0, 1)");
   if (o.points.empty() == o.points_file.empty()) throw InputError("give either --point (repeatable) or --points FILE");
 
@@ -188,7 +187,7 @@ int run_classify(const ClassifyCli& o) {
   if (interrupted()) return cancelled();
 
   std::vector<std::unique_ptr<PointClassifier>> classifiers;
-  for (const Target& t : targets) classifiers.push_back(std::make_unique<PointClassifier>(accel, t.expr, *kernel, o.tol));
+  for (const Target& t : targets) classifiers.push_back(std::make_unique<PointClassifier>(accel, t.expr, kernel, o.tol));
   std::vector<PointClass> classes(pts.size() * targets.size());
   ProgressBar bar("classify", pts.size(), o.progress);
   for (std::size_t p = 0; p < pts.size(); ++p) {
@@ -224,10 +223,9 @@ std::function<int()> register_classify(CLI::App& app) {
                   "surface are 'on'")
       ->capture_default_str();
   cmd->add_option("--format", o->format, "table, csv or json (default: from -o's extension, else table)");
-  cmd->add_option("--kernel", o->kernel, "Exact kernel to trace with (all give the same result)")->capture_default_str();
+  add_exact_kernel_option(cmd, o->kernel);
   cmd->add_option("-o,--out", o->out, "Write here instead of stdout");
-  cmd->add_flag("--force", o->force, "Overwrite an existing output file");
-  cmd->add_flag("--progress", o->progress, "Show a progress bar on stderr even when it is not a terminal");
+  add_force_and_progress_flags(cmd, o->force, o->progress, "an existing output file");
   return [o] { return run_classify(*o); };
 }
 

@@ -138,8 +138,7 @@ int run_gqa_cmd(const GqaCli& o) {
   InterruptGuard guard;
   OutputFile::check_target(o.json, o.force);
   if (!o.json.empty() && o.json == "-") throw InputError("--json needs a file name");
-  const std::optional<KernelKind> kernel = parse_kernel(o.kernel);
-  if (!kernel || !is_exact(*kernel)) throw InputError("--kernel '" + o.kernel + "': not an exact kernel");
+  const KernelKind kernel = exact_kernel_option(o.kernel);
   if (!(o.tol > 0) || !(o.tol < 1)) throw InputError("--tol must be in (0, 1)");
   if (o.start_n > o.max_n) throw InputError("--start-n must not exceed --max-n");
 
@@ -151,7 +150,7 @@ int run_gqa_cmd(const GqaCli& o) {
   go.start_n = o.start_n;
   go.max_n = o.max_n;
   go.seed = o.seed;
-  go.kernel = *kernel;
+  go.kernel = kernel;
   go.gap_min = o.gap_min;
   go.gap_max = o.gap_max;
   for (const std::string& e : o.csg) go.regions.push_back(parse_csg(e, scene));
@@ -203,10 +202,9 @@ std::function<int()> register_gqa(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--gap-max", o->gap_max, "Report only gaps no longer than this (model units)")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--kernel", o->kernel, "Exact kernel to trace with (all give the same result)")->capture_default_str();
+  add_exact_kernel_option(cmd, o->kernel);
   cmd->add_option("--json", o->json, "Write the results as JSON to this file");
-  cmd->add_flag("--force", o->force, "Overwrite an existing --json file");
-  cmd->add_flag("--progress", o->progress, "Show a progress bar on stderr even when it is not a terminal");
+  add_force_and_progress_flags(cmd, o->force, o->progress, "an existing --json file");
   return [o] { return run_gqa_cmd(*o); };
 }
 

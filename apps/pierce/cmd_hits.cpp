@@ -20,6 +20,7 @@
 #include "pierce/error.h"
 #include "pierce/io/ray_source.h"
 #include "pierce/kernel.h"
+#include "pierce/kernel_names.h"
 #include "progress.h"
 
 namespace pierce::cli {
@@ -44,11 +45,7 @@ constexpr int kExitExactDisagreement = 3;
 
 using Results = std::vector<std::vector<Hit>>;
 
-std::string kernel_list() {
-  std::string s;
-  for (KernelKind k : kAllKernels) s += std::string(kernel_name(k)) + ", ";
-  return s + "all";
-}
+std::string kernel_list() { return kernel_name_list() + ", all"; }
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -243,12 +240,7 @@ int run_all(const Accel& accel, const std::vector<Ray>& rays, const HitsOptions&
   return disagreeing.empty() ? 0 : kExitExactDisagreement;
 }
 
-std::string cost_metric_list() {
-  std::string s;
-  for (CostMetric m : {CostMetric::traversal_steps, CostMetric::node_tests, CostMetric::prim_tests})
-    s += (s.empty() ? "" : ", ") + std::string(cost_metric_name(m));
-  return s;
-}
+std::string cost_metric_list() { return enum_name_list<CostMetric>(); }
 
 // --heatmap: the kernel's counting variant on one ray per pixel.
 int run_heatmap(const Accel& accel, KernelKind kind, CostMetric metric, const FalseColourOptions& fo,
@@ -331,16 +323,13 @@ std::function<int()> register_hits(CLI::App& app) {
   cmd->add_option("--out", opts->out, "Write the CSV here instead of stdout (with --kernel all: the consensus hits)");
   cmd->add_option("--json", opts->json,
                   "With --kernel all: also write the table (time and differences per kernel) as JSON here");
-  cmd->add_flag("--force", opts->force, "Overwrite an existing --out, --json or --heatmap file");
-  cmd->add_flag("--progress", opts->progress, "Show a progress bar on stderr even when it is not a terminal");
+  add_force_and_progress_flags(cmd, opts->force, opts->progress, "an existing --out, --json or --heatmap file");
   cmd->add_option("--heatmap", opts->heatmap,
                   "Instead of --rays: a PNG heat map of the kernel's traversal work, one ray per pixel "
                   "(Gribble 2016), for --max-hits hits per ray");
   cmd->add_option("--heatmap-count", opts->heatmap_count, "What the heat map counts: " + cost_metric_list())
       ->capture_default_str();
-  cmd->add_option("--png-size", opts->png_size, "Heat map size WIDTHxHEIGHT in pixels")->capture_default_str();
-  cmd->add_option("--png-view", opts->png_view, "Direction the heat map's camera looks along, x,y,z (z is up)")
-      ->capture_default_str();
+  add_camera_options(cmd, opts->png_size, opts->png_view, "Heat map");
   return [opts] { return run_hits(*opts); };
 }
 

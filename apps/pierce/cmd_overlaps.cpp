@@ -19,8 +19,8 @@
 #include "output_file.h"
 #include "pierce/analysis/overlaps.h"
 #include "pierce/error.h"
-#include "pierce/io/false_colour.h"
 #include "pierce/io/ray_source.h"
+#include "pierce/render/false_colour.h"
 #include "progress.h"
 #include "vtp_writer.h"
 
@@ -203,16 +203,9 @@ int run_overlaps(const OverlapsCli& o) {
   InterruptGuard guard;
   const Format format = format_of(o.out);
   OutputFile::check_target(o.out, o.force);
-  const std::optional<KernelKind> kernel = parse_kernel(o.kernel);
-  if (!kernel || !is_exact(*kernel)) throw InputError("--kernel '" + o.kernel + "': not an exact kernel");
+  const KernelKind kernel = exact_kernel_option(o.kernel);
   if (!(o.tol >= 0) || !std::isfinite(o.tol)) throw InputError("--tol must be a finite number >= 0");
-  if (!o.png.empty()) {
-    OutputFile::check_target(o.png, o.force);
-    if (o.png == o.out) throw InputError("--png and -o name the same file '" + o.png + "'");
-    int w = 0, h = 0;
-    parse_picture_size("--png-size", o.png_size, w, h);
-    parse_view_direction("--png-view", o.png_view);
-  }
+  check_picture_options(o.png, o.out, o.force, o.png_size, o.png_view);
 
   Scene scene;
   load_models(scene, o.model);
@@ -229,7 +222,7 @@ int run_overlaps(const OverlapsCli& o) {
   if (!cop.completed || interrupted()) return cancelled();
 
   RayOverlapOptions ropts;
-  ropts.kernel = *kernel;
+  ropts.kernel = kernel;
   ropts.epsilon_rel = o.ray_eps;
   LazyProgressBar ray_bar("rays", o.progress);
   const RayOverlapReport rep = analyse_ray_overlaps(accel, rays, ropts, std::ref(ray_bar));
@@ -267,14 +260,11 @@ std::function<int()> register_overlaps(CLI::App& app) {
   cmd->add_option("--ray-eps", o->ray_eps, "Coplanar-hit epsilon, relative to the scene diagonal")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  cmd->add_option("--kernel", o->kernel, "Exact kernel to trace with (all give the same result)")->capture_default_str();
+  add_exact_kernel_option(cmd, o->kernel);
   cmd->add_option("-o,--out", o->out, "Output file: .vtp (per-triangle arrays), .csv (per solid pair) or .json (all)");
   cmd->add_option("--png", o->png, "Also render a false-colour picture of OverlapCount per triangle to this PNG");
-  cmd->add_option("--png-size", o->png_size, "Picture size WIDTHxHEIGHT in pixels")->capture_default_str();
-  cmd->add_option("--png-view", o->png_view, "Direction the camera looks along, x,y,z (z is up)")
-      ->capture_default_str();
-  cmd->add_flag("--force", o->force, "Overwrite existing output files");
-  cmd->add_flag("--progress", o->progress, "Show a progress bar on stderr even when it is not a terminal");
+  add_camera_options(cmd, o->png_size, o->png_view, "Picture");
+  add_force_and_progress_flags(cmd, o->force, o->progress, "existing output files");
   return [o] { return run_overlaps(*o); };
 }
 

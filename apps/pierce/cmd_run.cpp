@@ -10,14 +10,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "csv_text.h"
 #include "command.h"
+#include "csv_text.h"
+#include "effect_scene.h"
 #include "interrupt.h"
 #include "model_args.h"
 #include "output_file.h"
-#include "pierce/analysis/effect_scene.h"
 #include "pierce/error.h"
-#include "pierce/io/image_writer.h"
+#include "pierce/render/image_writer.h"
 #include "progress.h"
 
 namespace pierce::cli {
@@ -181,9 +181,7 @@ int run_scene(const RunCli& o) {
   if (!o.out_dir.empty()) redirect_outputs(spec, o.out_dir);
   if (!o.report.empty()) spec.report_json = o.report;
   if (!o.kernel.empty()) {
-    const std::optional<KernelKind> k = parse_kernel(o.kernel);
-    if (!k || !is_exact(*k)) throw InputError("--kernel '" + o.kernel + "': not an exact kernel");
-    spec.config.kernel = *k;
+    spec.config.kernel = exact_kernel_option(o.kernel);
   }
   spec.config.audit = o.audit;
   // Refuse clobbering before any long work, and two outputs with one name.
@@ -280,8 +278,7 @@ std::function<int()> register_run(CLI::App& app) {
   cmd->add_option("--kernel", o->kernel, "Exact kernel, overriding the scene's (default queue)");
   cmd->add_option("--out-dir", o->out_dir, "Write the scene's outputs under this directory instead of the scene's");
   cmd->add_option("--report", o->report, "Write the run report (JSON) here");
-  cmd->add_flag("--force", o->force, "Overwrite existing output files");
-  cmd->add_flag("--progress", o->progress, "Show a progress bar on stderr even when it is not a terminal");
+  add_force_and_progress_flags(cmd, o->force, o->progress, "existing output files");
   return [o] { return run_scene(*o); };
 }
 

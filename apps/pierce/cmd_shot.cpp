@@ -171,8 +171,7 @@ int run_shot(const ShotCli& o) {
   if (o.format != "table" && o.format != "csv" && o.format != "json")
     throw InputError("--format '" + o.format + "': expected table, csv or json");
   OutputFile::check_target(o.out, o.force);
-  const std::optional<KernelKind> kernel = parse_kernel(o.kernel);
-  if (!kernel || !is_exact(*kernel)) throw InputError("--kernel '" + o.kernel + "': not an exact kernel");
+  const KernelKind kernel = exact_kernel_option(o.kernel);
 
   Scene scene;
   load_models(scene, o.model);
@@ -184,7 +183,7 @@ int run_shot(const ShotCli& o) {
   if (interrupted()) return cancelled();
 
   ShotOptions so;
-  so.kernel = *kernel;
+  so.kernel = kernel;
   so.csg = csg ? &*csg : nullptr;
   ProgressBar bar("shot", rays.size(), o.progress);
   const ShotResult r = shoot(accel, rays, so, [&](std::size_t done, std::size_t) { return bar.update(done); });
@@ -219,10 +218,9 @@ std::function<int()> register_shot(CLI::App& app) {
                   "CSG expression over solid names, e.g. 'difference(union(a, b), c)' (docs/CSG.md): report its "
                   "intervals instead of each solid's");
   cmd->add_option("--format", o->format, "table (default), csv or json")->capture_default_str();
-  cmd->add_option("--kernel", o->kernel, "Exact kernel to trace with (all give the same result)")->capture_default_str();
+  add_exact_kernel_option(cmd, o->kernel);
   cmd->add_option("-o,--out", o->out, "Write here instead of stdout");
-  cmd->add_flag("--force", o->force, "Overwrite an existing output file");
-  cmd->add_flag("--progress", o->progress, "Show a progress bar on stderr even when it is not a terminal");
+  add_force_and_progress_flags(cmd, o->force, o->progress, "an existing output file");
   return [o] { return run_shot(*o); };
 }
 

@@ -18,7 +18,8 @@
 #include "output_file.h"
 #include "pierce/analysis/thickness.h"
 #include "pierce/error.h"
-#include "pierce/io/false_colour.h"
+#include "pierce/render/false_colour.h"
+#include "pierce/solid_reference.h"
 #include "progress.h"
 #include "vtp_writer.h"
 
@@ -44,22 +45,15 @@ struct ThicknessCli {
   bool force = false, progress = false;
 };
 
-// Solids by name or id.
+// Solids by name, #N or N (solid_reference.h).
 std::vector<std::uint32_t> resolve_solids(const Scene& scene, const std::vector<std::string>& wanted) {
   std::vector<std::uint32_t> ids;
   for (const std::string& w : wanted) {
-    bool found = false;
-    for (std::uint32_t g = 0; g < scene.geometries().size(); ++g)
-      if (scene.geometry(g).name == w) ids.push_back(g), found = true;
-    if (found) continue;
-    char* end = nullptr;
-    const unsigned long id = std::strtoul(w.c_str(), &end, 10);
-    if (!w.empty() && *end == '\0' && id < scene.geometries().size()) {
-      ids.push_back(std::uint32_t(id));
-      continue;
-    }
-    throw InputError("--solid '" + w + "': no solid with that name or id (" +
-                     std::to_string(scene.geometries().size()) + " solids; see `pierce info`)");
+    const std::vector<std::uint32_t> found = find_solids(scene, w);
+    if (found.empty())
+      throw InputError("--solid '" + w + "': no solid with that name or id (" +
+                       std::to_string(scene.geometries().size()) + " solids; see `pierce info`)");
+    ids.insert(ids.end(), found.begin(), found.end());
   }
   return ids;
 }
@@ -196,15 +190,8 @@ int run_thickness(const ThicknessCli& o) {
   InterruptGuard guard;
   const Format format = format_of(o.out);
   OutputFile::check_target(o.out, o.force);  // before any long work
-  const std::optional<KernelKind> kernel = parse_kernel(o.kernel);
-  if (!kernel || !is_exact(*kernel)) throw InputError("--kernel '" + o.kernel + "': not an exact kernel");
-  if (!o.png.empty()) {
-    OutputFile::check_target(o.png, o.force);
-    if (o.png == o.out) throw InputError("--png and -o name the same file '" + o.png + "'");
-    int w = 0, h = 0;
-    parse_picture_size("--png-size", o.png_size, w, h);
-    parse_view_direction("--png-view", o.png_view);
-  }
+  const KernelKind kernel = exact_kernel_option(o.kernel);
+  check_picture_options(o.png, o.out, o.force, o.png_size, o.png_view);
 
   Scene scene;
   load_models(scene, o.model);
@@ -216,7 +203,7 @@ int run_thickness(const ThicknessCli& o) {
   opts.max_distance = o.max_distance;
   opts.cone_rays = o.cone_rays;
   opts.cone_angle_deg = o.cone_angle;
-  opts.kernel = *kernel;
+  opts.kernel = kernel;
   // `auto` is the library's default, which is off (see --origin-offsets' help).
   opts.origin_offsets = o.origin_offsets == "on" ? analysis::OffsetMode::on : analysis::OffsetMode::off;
   opts.offset_set = parse_hemisphere_set(o.offset_set).value_or(HemisphereSet::center);
@@ -264,8 +251,8 @@ std::function<int()> register_thickness(CLI::App& app) {
   cmd->add_option("--cone-angle", o->cone_angle, "Cone method: full opening angle, degrees")
       ->check(CLI::Range(0.1, 179.0))
       ->capture_default_str();
-  cmd->add_option("--solid", o->solids, "Only these solids (name or id; repeatable); the others still bound rays");
-  cmd->add_option("--kernel", o->kernel, "Exact kernel to trace with (all give the same result)")->capture_default_str();
+  cmd->add_option("--solid", o->solids, "Only these solids (name, #N or N for geometry id N; repeatable); the others still bound rays");
+  add_exact_kernel_option(cmd, o->kernel);
   cmd->add_option("--origin-offsets", o->origin_offsets,
                   "Start face-sample rays where they leave an empty hemisphere on their triangle (Zoet); "
                   "results are identical, only the work changes. auto: where the bench shows it pays "
@@ -278,11 +265,8 @@ std::function<int()> register_thickness(CLI::App& app) {
   cmd->add_option("-o,--out", o->out, "Output file: .vtp (ParaView), .csv or .json; without it only the summary");
   cmd->add_option("--png", o->png,
                   "Also render a false-colour picture of the map to this PNG (grey: no thickness; red: thin)");
-  cmd->add_option("--png-size", o->png_size, "Picture size WIDTHxHEIGHT in pixels")->capture_default_str();
-  cmd->add_option("--png-view", o->png_view, "Direction the camera looks along, x,y,z (z is up)")
-      ->capture_default_str();
-  cmd->add_flag("--force", o->force, "Overwrite existing output files");
-  cmd->add_flag("--progress", o->progress, "Show a progress bar on stderr even when it is not a terminal");
+  add_camera_options(cmd, o->png_size, o->png_view, "Picture");
+  add_force_and_progress_flags(cmd, o->force, o->progress, "existing output files");
   return [o] { return run_thickness(*o); };
 }
 

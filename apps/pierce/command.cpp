@@ -17,4 +17,19 @@ Format format_of(const std::string& path) {
   throw InputError(path + ": unknown output format (expected .vtp, .csv or .json)");
 }
 
+void add_exact_kernel_option(CLI::App* cmd, std::string& kernel) {
+  cmd->add_option("--kernel", kernel, "Exact kernel to trace with (all give the same result)")->capture_default_str();
+}
+
+void add_force_and_progress_flags(CLI::App* cmd, bool& force, bool& progress, const std::string& outputs) {
+  cmd->add_flag("--force", force, "Overwrite " + outputs);
+  cmd->add_flag("--progress", progress, "Show a progress bar on stderr even when it is not a terminal");
+}
+
+KernelKind exact_kernel_option(const std::string& name) {
+  const std::optional<KernelKind> kernel = parse_kernel(name);
+  if (!kernel || !is_exact(*kernel)) throw InputError("--kernel '" + name + "': not an exact kernel");
+  return *kernel;
+}
+
 }  // namespace pierce::cli

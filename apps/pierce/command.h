@@ -9,6 +9,7 @@
 
 #include "interrupt.h"
 #include "output_file.h"
+#include "pierce/kernel.h"
 #include "progress.h"
 
 namespace pierce::cli {
@@ -17,6 +18,15 @@ namespace pierce::cli {
 // empty path. Throws InputError naming the file for any other extension.
 enum class Format { none, vtp, csv, json };
 Format format_of(const std::string& path);
+
+// Options that every analysis takes, worded once: --kernel (an exact kernel, `kernel` holding its
+// default), and --force (overwrite `outputs`, e.g. "an existing output file") with --progress.
+void add_exact_kernel_option(CLI::App* cmd, std::string& kernel);
+void add_force_and_progress_flags(CLI::App* cmd, bool& force, bool& progress, const std::string& outputs);
+
+// The exact kernel `name` names (--kernel of the analyses); throws InputError "--kernel 'x': not
+// an exact kernel" for an unknown or inexact one.
+KernelKind exact_kernel_option(const std::string& name);
 
 // Writes -o FILE (format != none) through write(format, stream); the file appears only when
 // complete and not after Ctrl-C. Returns the command's exit code (0, or kExitCancelled).

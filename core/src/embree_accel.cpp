@@ -33,6 +33,25 @@ void occluded_noop(const RTCOccludedFunctionNArguments*) {}
 
 }  // namespace
 
+void attach_native_triangles(RTCDevice device, RTCScene target, const Scene& scene) {
+  for (const Geometry& geo : scene.geometries()) {
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                          3 * sizeof(float), geo.vertices.size()));
+    for (std::size_t i = 0; i < geo.vertices.size(); ++i) {
+      v[3 * i] = float(geo.vertices[i].x), v[3 * i + 1] = float(geo.vertices[i].y),
+                v[3 * i + 2] = float(geo.vertices[i].z);
+    }
+    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                               3 * sizeof(unsigned), geo.triangles.size()));
+    for (std::size_t i = 0; i < geo.triangles.size(); ++i)
+      for (int k = 0; k < 3; ++k) idx[3 * i + k] = geo.triangles[i][k];
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(target, g);  // ids 0, 1, ... in attachment order
+    rtcReleaseGeometry(g);
+  }
+}
+
 EmbreeAccel::EmbreeAccel(const Scene& scene, const HugePageVector<Triangle<float>>& tris)
     : scene_(&scene), tris_(&tris) {
   device_ = rtcNewDevice("threads=0");
@@ -61,22 +80,7 @@ EmbreeAccel::EmbreeAccel(const Scene& scene, const HugePageVector<Triangle<float
   check(device_, "building the exact scene");
 
   native_ = rtcNewScene(device_);
-  for (const Geometry& geo : scene.geometries()) {
-    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                          3 * sizeof(float), geo.vertices.size()));
-    for (std::size_t i = 0; i < geo.vertices.size(); ++i) {
-      v[3 * i] = float(geo.vertices[i].x), v[3 * i + 1] = float(geo.vertices[i].y),
-                v[3 * i + 2] = float(geo.vertices[i].z);
-    }
-    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                               3 * sizeof(unsigned), geo.triangles.size()));
-    for (std::size_t i = 0; i < geo.triangles.size(); ++i)
-      for (int k = 0; k < 3; ++k) idx[3 * i + k] = geo.triangles[i][k];
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(native_, g);  // ids 0, 1, ... match Pierce's geometry ids
-    rtcReleaseGeometry(g);
-  }
+  attach_native_triangles(device_, native_, scene);
   rtcCommitScene(native_);
   check(device_, "building the native scene");
 }

@@ -7,12 +7,13 @@ deepest interpenetration of each pair, the shared triangles of each contact). Th
 are not modified.
 """
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
 from .errors import UserError
-from .selection import collect_solids
-from .tessellate import build_model
+from .progress import start_stage
+from .tessellate import mesh_objects
 
 KINDS = {
     "interference": "Interpenetration",
@@ -80,15 +81,15 @@ class Finding:
         return out
 
 
+@dataclass(eq=False)
 class OverlapRun:
-    def __init__(self, options, model, findings, ray_report, coplanar_report, warnings):
-        self.options = options
-        self.model = model
-        self.findings = findings
-        self.ray_report = ray_report
-        self.coplanar_report = coplanar_report
-        self.warnings = warnings
-        self.group = None
+    options: OverlapOptions
+    model: object  # tessellate.Model
+    findings: list
+    ray_report: object  # pierce.RayOverlapReport
+    coplanar_report: object  # pierce.CoplanarReport
+    warnings: list
+    group: object = None  # the document group of the result objects, once created
 
     def of_kind(self, kind):
         return [f for f in self.findings if f.kind == kind]
@@ -112,20 +113,13 @@ def compute(objects, options, progress=None, cancel=None):
     options.check()
     from .locate import import_pierce
     pierce = import_pierce()
-    refs, warnings = collect_solids(objects)
-    if cancel is not None and cancel.cancelled:
-        raise pierce.Cancelled("cancelled before start")
-    stage = getattr(progress, "stage", None)
-    if stage:
-        stage("Pierce: meshing solids")
-    model = build_model(refs, options.deflection, options.angular_deflection, progress=progress)
+    model, warnings = mesh_objects(objects, options.deflection, options.angular_deflection,
+                                   progress=progress, cancel=cancel)
     scene, solids = model.scene, model.solids
 
-    if stage:
-        stage("Pierce: coplanar faces")
+    start_stage(progress, "Pierce: coplanar faces")
     cop = pierce.coplanar_overlaps(scene, tolerance=options.tolerance, progress=progress, cancel=cancel)
-    if stage:
-        stage("Pierce: interference along rays")
+    start_stage(progress, "Pierce: interference along rays")
     org, dirs, tmin, tmax = pierce.axis_grid_rays(scene, options.grid)
     rays = pierce.ray_overlaps(scene, org, dirs, tmin=tmin, tmax=tmax, progress=progress, cancel=cancel)
     parts = pierce.partitions(scene, org, dirs, tmin=tmin, tmax=tmax, progress=progress, cancel=cancel)

@@ -62,3 +62,11 @@ class Progress:
                 self.stopped = True
                 return False
         return True
+
+
+def start_stage(progress, text):
+    """progress.stage(text) when the callback has stages (a Progress), else nothing: the analyses
+    also take a plain progress(done, total) callable."""
+    stage = getattr(progress, "stage", None)
+    if stage:
+        stage(text)

@@ -6,12 +6,13 @@ GUI-free: shoot() returns a ShotRun; create_objects() adds coloured line segment
 (one object per solid, overlaps red, gaps grey dashed), leaving the analysed objects untouched.
 """
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
 from .errors import SelectionError, UserError
-from .selection import collect_solids
-from .tessellate import build_model
+from .progress import start_stage
+from .tessellate import mesh_objects
 
 # Distinct colours for the solids' segments (overlaps are red, gaps grey).
 PALETTE = [(0.12, 0.47, 0.71), (0.17, 0.63, 0.17), (1.0, 0.5, 0.05), (0.58, 0.40, 0.74), (0.55, 0.34, 0.29),
@@ -28,17 +29,17 @@ class ShotOptions:
         self.create_objects = create_objects
 
 
+@dataclass(eq=False)
 class ShotRun:
     """rows: dicts per interval (ray, kind, solids as SolidRefs, labels, t_in, t_out, in_point,
     out_point, los, obliquity_in/out in degrees, normal_thickness); per_solid: {label: total
     line of sight}; rays: (origins, directions)."""
 
-    def __init__(self, model, rows, rays, warnings):
-        self.model = model
-        self.rows = rows
-        self.rays = rays
-        self.warnings = warnings
-        self.group = None
+    model: object  # tessellate.Model
+    rows: list
+    rays: tuple
+    warnings: list
+    group: object = None  # the document group of the result objects, once created
 
     def per_solid(self):
         out = {}
@@ -106,15 +107,9 @@ def shoot(objects, origins, directions, options, progress=None, cancel=None):
         raise UserError("Give one direction per starting point.")
     if np.any(np.linalg.norm(directions, axis=1) == 0):
         raise UserError("The ray direction must not be zero.")
-    refs, warnings = collect_solids(objects)
-    if cancel is not None and cancel.cancelled:
-        raise pierce.Cancelled("cancelled before start")
-    stage = getattr(progress, "stage", None)
-    if stage:
-        stage("Pierce: meshing solids")
-    model = build_model(refs, options.deflection, options.angular_deflection, progress=progress)
-    if stage:
-        stage("Pierce: shotlines")
+    model, warnings = mesh_objects(objects, options.deflection, options.angular_deflection,
+                                   progress=progress, cancel=cancel)
+    start_stage(progress, "Pierce: shotlines")
     csg = options.csg.strip() if options.csg else None
     try:
         shots = pierce.shotlines(model.scene, origins, directions, csg=csg, progress=progress, cancel=cancel)

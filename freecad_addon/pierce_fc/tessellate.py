@@ -2,33 +2,34 @@
 triangle comes from. The user's shapes are copied first, so their own triangulation (and display)
 stays as it was."""
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
 from .errors import UserError
 
 
+@dataclass(eq=False)
 class MeshedSolid:
     """A solid's triangles: vertices (N, 3) float64, triangles (M, 3) int64, face_of_triangle (M,)
     index into ref.shape.Faces; `geom` is its geometry id in the scene."""
 
-    def __init__(self, ref, vertices, triangles, face_of_triangle, geom):
-        self.ref = ref
-        self.vertices = vertices
-        self.triangles = triangles
-        self.face_of_triangle = face_of_triangle
-        self.geom = geom
+    ref: object  # selection.SolidRef
+    vertices: object
+    triangles: object
+    face_of_triangle: object
+    geom: int
 
 
+@dataclass(eq=False)
 class Model:
     """Meshed solids and the pierce.Scene built from them (geometry id = position in `solids`)."""
 
-    def __init__(self, scene, solids, deflection, warnings, max_edge=0.0):
-        self.scene = scene
-        self.solids = solids
-        self.deflection = deflection
-        self.warnings = warnings
-        self.max_edge = max_edge
+    scene: object  # pierce.Scene
+    solids: list  # MeshedSolid per geometry
+    deflection: float
+    warnings: list
+    max_edge: float = 0.0
 
 
 def auto_deflection(shapes):
@@ -105,6 +106,21 @@ def build_model(refs, deflection=0.0, angular_deflection_deg=15.0, max_edge=0.0,
                             "may leave through the gaps" % (rep.name, rep.boundary_edges,
                                                             rep.non_manifold_edges))
     return Model(scene, solids, deflection, warnings, max_edge)
+
+
+def mesh_objects(objects, deflection, angular_deflection_deg, max_edge=0.0, progress=None, cancel=None):
+    """The first step of every analysis: the solids of `objects` (selection.collect_solids),
+    meshed into one Model (build_model). Returns (model, the selection's warnings); raises
+    pierce.Cancelled when cancel was set before the meshing started."""
+    from .locate import import_pierce
+    from .progress import start_stage
+    from .selection import collect_solids
+    pierce = import_pierce()
+    refs, warnings = collect_solids(objects)
+    if cancel is not None and cancel.cancelled:
+        raise pierce.Cancelled("cancelled before start")
+    start_stage(progress, "Pierce: meshing solids")
+    return build_model(refs, deflection, angular_deflection_deg, max_edge, progress=progress), warnings
 
 
 def refine(vertices, triangles, face_of_triangle, max_edge, max_triangles=2_000_000):

@@ -5,16 +5,24 @@ the result objects it created (one Mesh::Feature per solid, in a group), and a s
 Report view. The analysed objects are not modified.
 """
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
 from . import colormap
 from .errors import UserError
-from .selection import collect_solids
-from .tessellate import build_model
+from .progress import start_stage
+from .tessellate import mesh_objects
 
-METHODS = ("ray", "cone", "sphere")
-SAMPLING = ("face", "vertex")
+
+def method_names():
+    """The thickness methods, as the Pierce core names them (pierce.thickness_methods())."""
+    return tuple(_pierce().thickness_methods())
+
+
+def sampling_names():
+    """The sample locations, as the Pierce core names them (pierce.thickness_samplings())."""
+    return tuple(_pierce().thickness_samplings())
 
 
 class ThicknessOptions:
@@ -33,10 +41,10 @@ class ThicknessOptions:
         self.create_objects = create_objects
 
     def check(self):
-        if self.method not in METHODS:
-            raise UserError("Unknown method '%s' (ray, cone or sphere)." % self.method)
-        if self.per not in SAMPLING:
-            raise UserError("Sampling must be per face or per vertex, not '%s'." % self.per)
+        if self.method not in method_names():
+            raise UserError("Unknown method '%s' (%s)." % (self.method, ", ".join(method_names())))
+        if self.per not in sampling_names():
+            raise UserError("Sampling must be per %s, not '%s'." % (" or per ".join(sampling_names()), self.per))
         if self.threshold < 0 or not math.isfinite(self.threshold):
             raise UserError("The thin threshold must be a length >= 0.")
         if not self.max_distance > 0:
@@ -71,14 +79,14 @@ class SolidThickness:
         return float(np.percentile(v, q)) if len(v) else math.nan
 
 
+@dataclass(eq=False)
 class ThicknessRun:
-    def __init__(self, options, model, solids, color_range, warnings):
-        self.options = options
-        self.model = model
-        self.solids = solids
-        self.color_range = color_range
-        self.warnings = warnings
-        self.group = None
+    options: ThicknessOptions
+    model: object  # tessellate.Model
+    solids: list  # SolidThickness per solid
+    color_range: tuple  # (lo, hi) of the legend
+    warnings: list
+    group: object = None  # the document group of the result objects, once created
 
     def summary(self):
         o = self.options
@@ -107,16 +115,9 @@ def compute(objects, options, progress=None, cancel=None):
     """Numbers only, no document objects. progress: a pierce_fc.progress.Progress or callable."""
     options.check()
     pierce = _pierce()
-    refs, warnings = collect_solids(objects)
-    if cancel is not None and cancel.cancelled:
-        raise pierce.Cancelled("cancelled before start")
-    stage = getattr(progress, "stage", None)
-    if stage:
-        stage("Pierce: meshing solids")
-    model = build_model(refs, options.deflection, options.angular_deflection, options.max_edge,
-                        progress=progress)
-    if stage:
-        stage("Pierce: thickness (%s)" % options.method)
+    model, warnings = mesh_objects(objects, options.deflection, options.angular_deflection, options.max_edge,
+                                   progress=progress, cancel=cancel)
+    start_stage(progress, "Pierce: thickness (%s)" % options.method)
     res = pierce.thickness(model.scene, method=options.method, per=options.per,
                            max_distance=options.max_distance, min_thickness=options.threshold,
                            progress=progress, cancel=cancel)

@@ -25,12 +25,8 @@ struct HitRecord {
 
 }  // namespace
 
-KernelKind kernel_from_name(const std::string& name) {
-  if (auto k = parse_kernel(name)) return *k;
-  std::string known;
-  for (KernelKind k : kAllKernels) known += (known.empty() ? "" : ", ") + std::string(kernel_name(k));
-  throw pyb::value_error("unknown kernel '" + name + "' (known: " + known + ")");
-}
+// Through core's table, so the names and the ValueError's message are the CLI's.
+KernelKind kernel_from_name(const std::string& name) { return parse_kernel_or_throw(name); }
 
 TieOrder tie_from_name(const std::string& name) { return parse_enum_or_throw<TieOrder>(name); }
 
@@ -39,13 +35,7 @@ void bind_hits(pyb::module_& m) {
 
   m.def(
       "kernels",
-      [](bool include_double) {
-        std::vector<std::string> names;
-        for (KernelKind k : kAllKernels) names.emplace_back(kernel_name(k));
-        if (include_double)
-          for (KernelKind k : kDoubleKernels) names.emplace_back(kernel_name(k));
-        return names;
-      },
+      [](bool include_double) { return kernel_names(include_double); },
       pyb::arg("include_double") = false,
       "Names of the kernels; all but 'epsilon' are exact and agree. include_double adds the kernels on a\n"
       "double-precision BVH, whose answers can differ where the input is not representable in float.");

@@ -101,7 +101,15 @@ void bind_thickness(pyb::module_& m) {
                (r.per == SampleAt::vertex ? "vertices" : "faces") + ", " + std::to_string(r.solids.size()) +
                " solids>";
       });
-  m.attr("THICKNESS_STATUS") = pyb::make_tuple("ok", "no_exit", "no_normal");
+  // Names from core's tables (enum_names.h), as the CLI spells them; THICKNESS_STATUS[i] is the
+  // name of status code i.
+  m.attr("THICKNESS_STATUS") = pyb::tuple(pyb::cast(enum_names<ThicknessStatus>()));
+  m.def("thickness_methods", [] { return enum_names<ThicknessMethod>(); },
+        "Names of the thickness methods (thickness(method=...)).");
+  m.def("thickness_samplings", [] { return enum_names<SampleAt>(); },
+        "Names of the sample locations (thickness(per=...)).");
+  m.def("cone_aggregates", [] { return enum_names<ConeAggregate>(); },
+        "Names of the cone method's aggregates (thickness(cone_aggregate=...)).");
 
   m.def(
       "thickness",

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "pierce/kernel.h"
+#include "pierce/kernel_names.h"
 #include "pierce/scene.h"
 
 namespace pierce::py {

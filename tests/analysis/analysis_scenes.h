@@ -5,23 +5,11 @@
 #include <memory>
 #include <vector>
 
+#include "../common/test_world.h"
 #include "pierce/generators.h"
 #include "pierce/kernel.h"
 
 namespace pierce::test {
-
-// Accel keeps pointers into the scene: keep both in place.
-struct World {
-  Scene scene;
-  Accel accel;
-  explicit World(Scene s) : scene(std::move(s)), accel(scene) {}
-  World(const World&) = delete;
-  World& operator=(const World&) = delete;
-};
-
-inline std::unique_ptr<World> make_world(const std::vector<gen::Mesh>& meshes) {
-  return std::make_unique<World>(gen::to_scene(meshes));
-}
 
 using gen::flipped;
 using gen::icosphere;
@@ -30,6 +18,17 @@ using gen::merged;
 // One closed mesh: outer sphere radius 1, inner sphere radius `inner` facing inward.
 inline gen::Mesh hollow_sphere(int subdivisions, double inner = 0.95) {
   return gen::hollow_sphere(subdivisions, subdivisions, inner);
+}
+
+// The mesh with three vertices of its own per triangle, as STL stores it (nothing welded).
+inline gen::Mesh triangle_soup(const gen::Mesh& m) {
+  gen::Mesh soup;
+  for (const Tri& t : m.triangles) {
+    const auto base = std::uint32_t(soup.vertices.size());
+    for (auto v : t) soup.vertices.push_back(m.vertices[v]);
+    soup.triangles.push_back({base, base + 1, base + 2});
+  }
+  return soup;
 }
 
 inline double max_edge_length(const gen::Mesh& m) {

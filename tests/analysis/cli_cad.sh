@@ -44,6 +44,11 @@ for n in ("plate_assy/block", "plate_assy/block#2", "plate_assy/clash"):
 PYEOF
 run "thickness --solid" "$PIERCE" thickness "$STEP" --per face --solid plate_assy/clash -o "$WORK/c.csv"
 [ "$(($(wc -l <"$WORK/c.csv") - 1))" -eq 12 ] || fail "--solid: expected the clash's 12 faces only"
+# The same solid by id, as #N (the CSG form) and as a bare N: one syntax for solids everywhere.
+run "thickness --solid #3" "$PIERCE" thickness "$STEP" --per face --solid '#3' -o "$WORK/c_hash.csv"
+run "thickness --solid 3" "$PIERCE" thickness "$STEP" --per face --solid 3 -o "$WORK/c_id.csv"
+cmp -s "$WORK/c.csv" "$WORK/c_hash.csv" || fail "--solid '#3' is not the clash (solid 3)"
+cmp -s "$WORK/c.csv" "$WORK/c_id.csv" || fail "--solid 3 is not the clash (solid 3)"
 
 run "hollow sphere" "$PIERCE" thickness "$WORK/hollow.brep" --deflection 0.002 -o "$WORK/h.csv"
 $PY - "$WORK/h.csv" <<'PYEOF' || fail "hollow sphere wall"

@@ -59,12 +59,7 @@ TEST(MeshReport, ClosedOpenDuplicatedAndFlipped) {
 
 TEST(MeshReport, WeldsUnsharedVerticesAndCountsDegenerates) {
   const gen::Mesh b = gen::box({0, 0, 0}, {1, 1, 1});
-  gen::Mesh soup;
-  for (const Tri& t : b.triangles) {
-    const auto base = std::uint32_t(soup.vertices.size());
-    for (auto v : t) soup.vertices.push_back(b.vertices[v]);
-    soup.triangles.push_back({base, base + 1, base + 2});
-  }
+  gen::Mesh soup = triangle_soup(b);
   soup.triangles.push_back({0, 0, 0});  // degenerate, no edge
   auto w = make_world({soup});
   const auto rep = mesh_report(w->scene);

@@ -125,12 +125,7 @@ TEST_F(HollowSphere, SampleMaskMeasuresTheSelectedElementsAsTheFullRun) {
 // still gets the value (the first one is measured for it).
 TEST(SampleMask, ACopyOfAnUnselectedVertexGetsItsValue) {
   const gen::Mesh sphere = hollow_sphere(2, 0.9);
-  gen::Mesh soup;  // every triangle with its own three vertices
-  for (const Tri& t : sphere.triangles) {
-    const std::uint32_t base = std::uint32_t(soup.vertices.size());
-    for (auto v : t) soup.vertices.push_back(sphere.vertices[v]);
-    soup.triangles.push_back({base, base + 1, base + 2});
-  }
+  const gen::Mesh soup = triangle_soup(sphere);  // every triangle with its own three vertices
   const auto w = make_world({soup});
   ThicknessOptions o;
   const ThicknessResult full = compute_thickness(w->accel, o);
@@ -369,12 +364,7 @@ TEST(BoxThickness, UnweldedMeshUsesWeldedVertexNormals) {
   // faces around each corner, so corner rays run diagonally into the box (not along one face
   // normal, which would give exactly 1 for every vertex).
   const gen::Mesh b = gen::box({0, 0, 0}, {1, 1, 1});
-  gen::Mesh soup;
-  for (const Tri& t : b.triangles) {
-    const auto base = std::uint32_t(soup.vertices.size());
-    for (auto v : t) soup.vertices.push_back(b.vertices[v]);
-    soup.triangles.push_back({base, base + 1, base + 2});
-  }
+  const gen::Mesh soup = triangle_soup(b);
   auto w = make_world({soup});
   const ThicknessResult r = compute_thickness(w->accel, {});
   for (std::size_t i = 0; i < r.size(); ++i) EXPECT_NEAR(r.thickness[i], std::sqrt(3.0), 1e-6);

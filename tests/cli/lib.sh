@@ -57,6 +57,25 @@ png_size() {
   od -An -tu1 -j16 -N8 "$1" | awk '{ print $1 * 16777216 + $2 * 65536 + $3 * 256 + $4, $5 * 16777216 + $6 * 65536 + $7 * 256 + $8 }'
 }
 
+# expect_clean_interrupt PID STARTED_TEXT OUTPUT: waits until STARTED_TEXT shows on
+# $WORK/stderr (the run's progress bar: the work has started), sends Ctrl-C (SIGINT) to PID, and
+# checks that pierce says "cancelled", exits 130 and leaves neither OUTPUT nor a temporary file.
+expect_clean_interrupt() {
+  local pid=$1 started=$2 output=$3
+  for _ in $(seq 1 600); do
+    grep -q "$started" "$WORK/stderr" 2>/dev/null && break
+    kill -0 "$pid" 2>/dev/null || break
+    sleep 0.05
+  done
+  kill -INT "$pid" 2>/dev/null || fail "pierce finished before it could be interrupted"
+  local rc=0
+  wait "$pid" || rc=$?
+  [ "$rc" -eq 130 ] || fail "exit code $rc, expected 130"
+  grep -q cancelled "$WORK/stderr" || fail "no 'cancelled' message: $(cat "$WORK/stderr")"
+  [ ! -e "$output" ] || fail "a partial output file was left"
+  [ "$(find "$WORK" -name '*pierce-tmp*' | wc -l)" -eq 0 ] || fail "temporary file left behind"
+}
+
 finish() {
   if [ "$FAILURES" -ne 0 ]; then
     echo "$FAILURES check(s) failed" >&2

@@ -10,7 +10,7 @@
 #include "pierce/analysis/thickness.h"
 #include "pierce/error.h"
 #include "pierce/generators.h"
-#include "pierce/io/false_colour.h"
+#include "pierce/render/false_colour.h"
 
 namespace pierce {
 namespace {

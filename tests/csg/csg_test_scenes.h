@@ -6,21 +6,14 @@
 #include <string>
 #include <vector>
 
+#include "../common/test_world.h"
 #include "pierce/generators.h"
 #include "pierce/kernel.h"
 
 namespace pierce::csgtest {
 
-// Accel keeps a pointer to the scene: keep both in place.
-struct World {
-  Scene scene;
-  Accel accel;
-  explicit World(Scene s) : scene(std::move(s)), accel(scene) {}
-};
-
-inline std::unique_ptr<World> make_world(const std::vector<gen::Mesh>& meshes) {
-  return std::make_unique<World>(gen::to_scene(meshes));
-}
+using test::make_world;
+using test::World;
 
 // Tessellated sphere (gen::blob without bumps): an icosphere, symmetric under x -> -x, y -> -y and
 // z -> -z, so any half cut by a coordinate plane through its centre has exactly half its volume.

@@ -1,61 +1,31 @@
 // `pierce classify` end to end: inside / outside / on of points for solids and CSG expressions, with
 // expected classes that follow from the boxes' coordinates; output formats; errors for bad input.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <array>
-#include <atomic>
-#include <cstdlib>
-#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include "cli_fixture.h"
 #include "pierce/generators.h"
 
 namespace pierce {
 namespace {
 
-namespace fs = std::filesystem;
 
-struct Outcome {
-  int code = -1;
-  std::string out, err;
-};
+using csgtest::Outcome;
 
-class ClassifyCli : public ::testing::Test {
+class ClassifyCli : public csgtest::CliTest {
  protected:
+  ClassifyCli() : CliTest("pierce_classify_cli") {}
+
   void SetUp() override {
-    static std::atomic<int> counter{0};
-    dir_ = fs::temp_directory_path() /
-           ("pierce_classify_cli_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(dir_);
+    CliTest::SetUp();
     std::ofstream(path("boxes.obj")) << gen::to_obj({gen::box(kA.lo, kA.hi, "a"), gen::box(kB.lo, kB.hi, "b"),
                                                      gen::box(kC.lo, kC.hi, "c")});
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  void write(const std::string& name, const std::string& text) const { std::ofstream(path(name)) << text; }
-  static std::string read(const std::string& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
-
-  Outcome pierce(const std::string& args) const {
-    const std::string out = path("stdout.txt"), err = path("stderr.txt");
-    const std::string cmd = "cd '" + dir_.string() + "' && '" PIERCE_EXE "' " + args + " > '" + out + "' 2> '" + err + "'";
-    const int status = std::system(cmd.c_str());
-    Outcome r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = read(out);
-    r.err = read(err);
-    return r;
   }
 
   struct Box {
@@ -102,8 +72,6 @@ class ClassifyCli : public ::testing::Test {
     }
     return m;
   }
-
-  fs::path dir_;
 };
 
 // Inside, outside, on a face, an edge and a vertex, on the face two boxes share, inside the second.
@@ -189,9 +157,7 @@ TEST_F(ClassifyCli, PointOptionsTableAndJson) {
   EXPECT_GT(j["tolerance"].get<double>(), 0);
 
   // No overwrite without --force.
-  r = pierce("classify boxes.obj --point 0,0,0 -o out.json");
-  EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("--force"), std::string::npos) << r.err;
+  expect_input_error("classify boxes.obj --point 0,0,0 -o out.json", "--force");
   EXPECT_EQ(nlohmann::json::parse(read(path("out.json")))["points"][0]["at"][0], 1.5);
   r = pierce("classify boxes.obj --point 0,0,0 -o out.json --force");
   EXPECT_EQ(r.code, 0) << r.err;
@@ -217,21 +183,11 @@ TEST_F(ClassifyCli, BadPointsAreReportedWithFileAndLine) {
     EXPECT_NE(r.err.find(c.message), std::string::npos) << c.csv << " -> " << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
   }
-  Outcome r = pierce("classify boxes.obj --points missing.csv");
-  EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("missing.csv: cannot open"), std::string::npos) << r.err;
-  r = pierce("classify boxes.obj --point 1,2");
-  EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("--point '1,2': expected three"), std::string::npos) << r.err;
-  r = pierce("classify boxes.obj");
-  EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("give either --point"), std::string::npos) << r.err;
-  r = pierce("classify boxes.obj --point 0,0,0 --csg 'union(a, zz)'");
-  EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("unknown solid name"), std::string::npos) << r.err;
-  r = pierce("classify boxes.obj --point 0,0,0 --format xml");
-  EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("--format 'xml'"), std::string::npos) << r.err;
+  expect_input_error("classify boxes.obj --points missing.csv", "missing.csv: cannot open");
+  expect_input_error("classify boxes.obj --point 1,2", "--point '1,2': expected three");
+  expect_input_error("classify boxes.obj", "give either --point");
+  expect_input_error("classify boxes.obj --point 0,0,0 --csg 'union(a, zz)'", "unknown solid name");
+  expect_input_error("classify boxes.obj --point 0,0,0 --format xml", "--format 'xml'");
 }
 
 }  // namespace

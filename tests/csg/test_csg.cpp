@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 
 #include "csg_test_scenes.h"
 #include "pierce/analysis/csg.h"
 #include "pierce/error.h"
+#include "pierce/solid_reference.h"
 
 namespace pierce::analysis {
 namespace {
@@ -92,6 +94,33 @@ TEST(CsgParse, UnknownNamesAreAllListedWithTheKnownOnes) {
   EXPECT_NE(msg.find("unknown solid names 'x', 'y', '#7'"), std::string::npos) << msg;
   EXPECT_NE(msg.find("known: a, b"), std::string::npos) << msg;
   EXPECT_EQ(parse_error("union(a, b)", w->scene), "");
+}
+
+// One syntax for naming solids everywhere (solid_reference.h): name, #N or N; a name wins over
+// the id reading, except an unquoted #N in an expression.
+TEST(SolidReference, NamesHashIdsAndBareIds) {
+  EXPECT_EQ(parse_solid_id("#12"), std::optional<std::uint32_t>(12));
+  EXPECT_EQ(parse_solid_id("12"), std::optional<std::uint32_t>(12));
+  EXPECT_EQ(parse_solid_id("#"), std::nullopt);
+  EXPECT_EQ(parse_solid_id("-1"), std::nullopt);
+  EXPECT_EQ(parse_solid_id("1a"), std::nullopt);
+  EXPECT_EQ(parse_solid_id("1234567890"), std::nullopt);
+
+  auto w = make_world({gen::box({0, 0, 0}, {1, 1, 1}, "a"), gen::box({1, 0, 0}, {2, 1, 1}, "2"),
+                       gen::box({2, 0, 0}, {3, 1, 1}, "a"), gen::box({3, 0, 0}, {4, 1, 1}, "#0")});
+  using Ids = std::vector<std::uint32_t>;
+  EXPECT_EQ(find_solids(w->scene, "a"), (Ids{0, 2}));
+  EXPECT_EQ(find_solids(w->scene, "#1"), (Ids{1}));
+  EXPECT_EQ(find_solids(w->scene, "1"), (Ids{1}));
+  EXPECT_EQ(find_solids(w->scene, "2"), (Ids{1}));   // the name "2", not id 2
+  EXPECT_EQ(find_solids(w->scene, "#0"), (Ids{3}));  // the name "#0"
+  EXPECT_EQ(find_solids(w->scene, "4"), Ids{});
+  EXPECT_EQ(find_solids(w->scene, "b"), Ids{});
+
+  // In an expression: a bare id now works as in --solid; an unquoted #N stays the id.
+  EXPECT_EQ(parse_csg("union(3, \"#0\", #0, 2)", w->scene).leaves,
+            (std::vector<Ids>{{3}, {3}, {0}, {1}}));
+  EXPECT_NE(parse_error("union(a, 9)", w->scene).find("unknown solid name '9'"), std::string::npos);
 }
 
 TEST(CsgEvaluate, TouchingBoxesUnionIsOneSeamlessInterval) {

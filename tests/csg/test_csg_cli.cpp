@@ -1,19 +1,15 @@
 // The `pierce shot`, `pierce gqa` and `pierce run` commands end to end: output formats, JSON keys,
 // error messages and exit codes, no clobbering without --force.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <atomic>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include "cli_fixture.h"
 #include "csg_test_scenes.h"
-#include "pierce/analysis/effect_scene.h"
+#include "effect_scene.h"
 #include "pierce/generators.h"
 #include "png_decode.h"
 
@@ -22,45 +18,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int code = -1;
-  std::string out, err;
-};
+using csgtest::Outcome;
 
-class CsgCli : public ::testing::Test {
+class CsgCli : public csgtest::CliTest {
  protected:
-  void SetUp() override {
-    static std::atomic<int> counter{0};
-    dir_ = fs::temp_directory_path() /
-           ("pierce_csg_cli_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
-  void write(const std::string& name, const std::string& text) const { std::ofstream(path(name)) << text; }
-
-  static std::string read(const std::string& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
-
-  // Runs `pierce ARGS` in the temporary directory.
-  Outcome pierce(const std::string& args) const {
-    const std::string out = path("stdout.txt"), err = path("stderr.txt");
-    const std::string cmd = "cd '" + dir_.string() + "' && '" PIERCE_EXE "' " + args + " > '" + out + "' 2> '" + err + "'";
-    const int status = std::system(cmd.c_str());
-    Outcome r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = read(out);
-    r.err = read(err);
-    return r;
-  }
-
-  fs::path dir_;
+  CsgCli() : CliTest("pierce_csg_cli") {}
 };
 
 std::string boxes_obj() {
@@ -93,9 +55,7 @@ TEST_F(CsgCli, GqaJsonHasSolidsWithVolumeCentroidAndOverlaps) {
 
   // No clobbering without --force; the file stays as it was.
   const std::string before = read(path("gqa.json"));
-  const Outcome again = pierce("gqa boxes.obj --json gqa.json");
-  EXPECT_EQ(again.code, 2);
-  EXPECT_NE(again.err.find("gqa.json"), std::string::npos) << again.err;
+  expect_input_error("gqa boxes.obj --json gqa.json", "gqa.json");
   EXPECT_EQ(read(path("gqa.json")), before);
   EXPECT_EQ(pierce("gqa boxes.obj --json gqa.json --force --tol 0.01").code, 0);
 }
@@ -107,9 +67,7 @@ TEST_F(CsgCli, GqaRegionsAndBadExpressions) {
   const auto j = nlohmann::json::parse(read(path("g.json")));
   ASSERT_EQ(j["regions"].size(), 1u);
   EXPECT_NEAR(j["regions"][0]["volume"].get<double>(), 1.75, 1e-5);
-  const Outcome bad = pierce("gqa boxes.obj --csg 'union(a, wing)'");
-  EXPECT_EQ(bad.code, 2);
-  EXPECT_NE(bad.err.find("unknown solid name 'wing'"), std::string::npos) << bad.err;
+  expect_input_error("gqa boxes.obj --csg 'union(a, wing)'", "unknown solid name 'wing'");
 }
 
 TEST_F(CsgCli, ShotTableCsvAndJson) {
@@ -139,15 +97,9 @@ TEST_F(CsgCli, ShotTableCsvAndJson) {
 
 TEST_F(CsgCli, ShotRejectsBadArguments) {
   write("boxes.obj", boxes_obj());
-  const Outcome a = pierce("shot boxes.obj --from 1,2 --dir 1,0,0");
-  EXPECT_EQ(a.code, 2);
-  EXPECT_NE(a.err.find("--from '1,2'"), std::string::npos) << a.err;
-  const Outcome b = pierce("shot boxes.obj --from 0,0,0 --dir 1,0,0 --grid axis=z,n=2");
-  EXPECT_EQ(b.code, 2);
-  EXPECT_NE(b.err.find("exactly one of"), std::string::npos) << b.err;
-  const Outcome c = pierce("shot boxes.obj --from 0,0,0 --dir 1,0,0 --csg 'union(a,'");
-  EXPECT_EQ(c.code, 2);
-  EXPECT_NE(c.err.find("column 9"), std::string::npos) << c.err;
+  expect_input_error("shot boxes.obj --from 1,2 --dir 1,0,0", "--from '1,2'");
+  expect_input_error("shot boxes.obj --from 0,0,0 --dir 1,0,0 --grid axis=z,n=2", "exactly one of");
+  expect_input_error("shot boxes.obj --from 0,0,0 --dir 1,0,0 --csg 'union(a,'", "column 9");
   const Outcome d = pierce("shot boxes.obj --from 0,0,0 --dir 0,0,0");
   EXPECT_EQ(d.code, 2);
 }
@@ -174,9 +126,7 @@ TEST_F(CsgCli, RunXraySceneWritesImagesAndReportsSavedWork) {
   EXPECT_EQ(read(path("out/xray.png")).substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
   EXPECT_NE(read(path("out/xray.vti")).find("WholeExtent=\"0 7 0 7 0 0\""), std::string::npos);
   // Outputs exist now: a second run refuses to overwrite them.
-  const Outcome again = pierce("run xray.json");
-  EXPECT_EQ(again.code, 2);
-  EXPECT_NE(again.err.find("not overwriting"), std::string::npos) << again.err;
+  expect_input_error("run xray.json", "not overwriting");
   EXPECT_EQ(pierce("run xray.json --out-dir elsewhere").code, 0);
   EXPECT_TRUE(fs::exists(path("elsewhere/out/xray.png")));
 }
@@ -203,14 +153,14 @@ TEST_F(CsgCli, RunXrayImageMatchesBeerLambertPixelByPixel) {
   ASSERT_EQ(png.width, 24u);
   ASSERT_EQ(png.height, 20u);
   EXPECT_EQ(png.bits, 16);
-  analysis::CameraSpec cam;
+  cli::CameraSpec cam;
   cam.center = {0.5, 0.5, -1};
   cam.direction = {0.35, 0.15, 1};
   cam.up = {0, 1, 0};
   cam.width = cam.height = 1.6;
   cam.pixels_x = 24;
   cam.pixels_y = 20;
-  const std::vector<Ray> rays = analysis::camera_rays(cam);
+  const std::vector<Ray> rays = cli::camera_rays(cam);
   const double q = 1.0 / 65535;  // 16-bit quantisation
   int below = 0, above = 0, dark = 0;
   for (std::uint32_t y = 0; y < 20; ++y)
@@ -250,16 +200,10 @@ TEST_F(CsgCli, RunReportsSceneErrorsWithFileAndKey) {
   write("stack.obj", gen::to_obj(gen::stacked_plates(2, 1.0, 0.1)));
   write("bad.json", R"js({"models": "stack.obj", "rays": "random:n=4", "effects": {"xray": {"image": "x.png"}},
                           "materials": {"lead": {"mu": 1}}, "solids": {"*": "lead"}})js");
-  const Outcome r = pierce("run bad.json");
-  EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("images need rays that form one"), std::string::npos) << r.err;
+  expect_input_error("run bad.json", "images need rays that form one");
   write("typo.json", R"js({"models": "stack.obj", "rays": "grid", "effects": {"xray": {"treshold": 0.1}}})js");
-  const Outcome t = pierce("run typo.json");
-  EXPECT_EQ(t.code, 2);
-  EXPECT_NE(t.err.find("typo.json: effects.xray: unknown key 'treshold'"), std::string::npos) << t.err;
-  const Outcome m = pierce("run missing.json");
-  EXPECT_EQ(m.code, 2);
-  EXPECT_NE(m.err.find("missing.json: cannot open"), std::string::npos) << m.err;
+  expect_input_error("run typo.json", "typo.json: effects.xray: unknown key 'treshold'");
+  expect_input_error("run missing.json", "missing.json: cannot open");
 }
 
 }  // namespace

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "csg_test_scenes.h"
-#include "pierce/analysis/effect_scene.h"
+#include "effect_scene.h"
 #include "pierce/analysis/effects.h"
 #include "pierce/error.h"
 
@@ -15,6 +15,14 @@ namespace {
 
 using csgtest::make_world;
 using csgtest::World;
+// The scene-file format of `pierce run` is the CLI's (apps/pierce/effect_scene.h).
+using cli::bind_effect_scene;
+using cli::camera_rays;
+using cli::CameraSpec;
+using cli::EffectSceneSpec;
+using cli::make_scene_rays;
+using cli::parse_effect_scene;
+using cli::SceneRays;
 
 constexpr int kPlates = 20;
 constexpr double kPlateT = 0.1;
@@ -290,6 +298,16 @@ std::string scene_error(const std::string& text) {
   return "";
 }
 
+// bind_effect_scene's InputError message ("" when it binds).
+std::string bind_error(const EffectSceneSpec& spec, const Scene& scene) {
+  try {
+    bind_effect_scene(spec, scene);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
 TEST(EffectScene, ParsesModelsMaterialsRaysEffectsAndOutputs) {
   const EffectSceneSpec s = parse_effect_scene(R"js({
     // comments are allowed
@@ -370,22 +388,12 @@ TEST(EffectScene, ErrorsNameFileKeyAndProblem) {
       R"js({"models": "m.obj", "rays": "grid", "effects": ["xray"], "materials": {"lead": {"mu": 1}},
           "solids": {"plate0": "lead", "plate99": "lead", "wing": "lead"}})js",
       "s.json");
-  try {
-    bind_effect_scene(s, w->scene);
-    FAIL() << "expected an error";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("no solid named 'plate99', 'wing'"), std::string::npos) << e.what();
-  }
+  EXPECT_NE(bind_error(s, w->scene).find("no solid named 'plate99', 'wing'"), std::string::npos);
   const EffectSceneSpec missing = parse_effect_scene(
       R"js({"models": "m.obj", "rays": "grid", "effects": ["xray"], "materials": {"lead": {"mu": 1}},
           "solids": {"plate0": "lead"}})js",
       "s.json");
-  try {
-    bind_effect_scene(missing, w->scene);
-    FAIL() << "expected an error";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("19 solid(s) without a material"), std::string::npos) << e.what();
-  }
+  EXPECT_NE(bind_error(missing, w->scene).find("19 solid(s) without a material"), std::string::npos);
 }
 
 TEST(EffectScene, GridRaysFormAnImageWithRowZeroAtTheBottom) {

@@ -679,19 +679,10 @@ std::vector<Case> corpus(const Options& o) {
   auto add = [&](std::vector<Case> v) {
     for (Case& c : v) all.push_back(std::move(c));
   };
-  add(coplanar_duplicates(o));
-  add(coplanar_overlaps(o));
-  add(touching_plates(o));
-  add(t_junctions(o));
-  add(closed_edges_vertices(o));
-  add(grazing(o));
-  add(near_coplanar(o));
-  add(slivers(o));
-  add(scaled_translated(o));
-  add(double_rounding(o));
-  add(segment_ends(o));
-  add(invalid_rays(o));
-  add(deep_stack(o));
+  for (auto family : {coplanar_duplicates, coplanar_overlaps, touching_plates, t_junctions, closed_edges_vertices,
+                      grazing, near_coplanar, slivers, scaled_translated, double_rounding, segment_ends, invalid_rays,
+                      deep_stack})
+    add(family(o));
   return all;
 }
 

@@ -6,21 +6,6 @@ namespace pierce::test {
 
 namespace {
 
-Vec3d axis_dir(int axis, double sign) {
-  Vec3d d{0, 0, 0};
-  d[std::size_t(axis)] = sign;
-  return d;
-}
-
-// Point with `w` on `axis` and (p, q) on the next two axes.
-Vec3d point(int axis, double w, double p, double q) {
-  Vec3d v;
-  v[std::size_t(axis)] = w;
-  v[std::size_t((axis + 1) % 3)] = p;
-  v[std::size_t((axis + 2) % 3)] = q;
-  return v;
-}
-
 // Half-open footprint test: the tie rule puts an axis ray through a boundary at (a, b) on the
 // side of larger coordinates, for +axis and -axis rays alike (docs/EXACTNESS.md).
 bool half_open(double a, double lo, double hi) { return lo <= a && a < hi; }
@@ -59,21 +44,21 @@ void plate_probes(Builder& b, int layers, int interior, bool extras) {
   const Expect through{2 * layers, true, true};
   for (int i = 0; i < interior; ++i) {
     const double sign = i % 2 ? -1.0 : 1.0;
-    b.add({{b.uniform(0.01, 0.99), b.uniform(0.01, 0.99), sign > 0 ? -1.0 : top + 1.0}, axis_dir(2, sign)}, through);
+    b.add({{b.uniform(0.01, 0.99), b.uniform(0.01, 0.99), sign > 0 ? -1.0 : top + 1.0}, axis_unit(2, sign)}, through);
   }
   for (int k = 1; k < 8; ++k)  // face diagonals x = y of both z faces
-    b.add({{k / 8.0, k / 8.0, k % 2 ? -1.0 : top + 1.0}, axis_dir(2, k % 2 ? 1.0 : -1.0)}, through);
+    b.add({{k / 8.0, k / 8.0, k % 2 ? -1.0 : top + 1.0}, axis_unit(2, k % 2 ? 1.0 : -1.0)}, through);
   if (!extras) return;
   for (double px : {0.0, 0.5, 1.0})
     for (double py : {0.0, 0.5, 1.0})
       for (double sign : {1.0, -1.0}) {
         const bool in = half_open(px, 0, 1) && half_open(py, 0, 1);
-        b.add({{px, py, sign > 0 ? -1.0 : top + 1.0}, axis_dir(2, sign)}, {in ? 2 * layers : 0, true, true});
+        b.add({{px, py, sign > 0 ? -1.0 : top + 1.0}, axis_unit(2, sign)}, {in ? 2 * layers : 0, true, true});
       }
   // Along x in the plane where two plates touch: only the upper plate's sides are crossed.
   for (int k = 0; k <= layers; ++k)
     for (double sign : {1.0, -1.0}) {
-      const Ray r{{sign > 0 ? -1.0 : 2.0, b.uniform(0.01, 0.99), k * 0.1}, axis_dir(0, sign)};
+      const Ray r{{sign > 0 ? -1.0 : 2.0, b.uniform(0.01, 0.99), k * 0.1}, axis_unit(0, sign)};
       b.add(r, {k < layers ? 2 : 0, true, true});
     }
   // Oblique rays through the edges where plates meet their neighbours' sides.
@@ -143,7 +128,7 @@ Case build_case(Family f, const Xform& x) {
         const double sign = (i / 3) % 2 ? 1.0 : -1.0;
         Vec3d org = v;
         org[std::size_t(axis)] -= sign * far;
-        b.c.probes.push_back({{org, axis_dir(axis, sign * x.scale)}, {-1, true, false}});
+        b.c.probes.push_back({{org, axis_unit(axis, sign * x.scale)}, {-1, true, false}});
       }
       return std::move(b.c);
     }
@@ -167,7 +152,7 @@ Case build_case(Family f, const Xform& x) {
             int count = 0;
             for (int j = 0; j <= n; ++j)
               if (sign > 0 ? j >= k : j <= k) count += boundary_hits(j);
-            const Vec3d dir = rep < 2 ? axis_dir(2, sign) : Vec3d{b.uniform(-0.3, 0.3), b.uniform(-0.3, 0.3), sign};
+            const Vec3d dir = rep < 2 ? axis_unit(2, sign) : Vec3d{b.uniform(-0.3, 0.3), b.uniform(-0.3, 0.3), sign};
             const Vec3d org{b.uniform(0.4, 0.6), b.uniform(0.4, 0.6), k * 0.1};
             b.add({org, dir}, {count, false, false});
           }
@@ -181,8 +166,8 @@ Case build_case(Family f, const Xform& x) {
         const double sign = i % 2 ? 1.0 : -1.0;
         const bool in_a = i % 4 < 2;
         const double px = in_a ? b.uniform(0.01, 0.99) : b.uniform(1.01, 1.99);
-        b.add({{px, b.uniform(0.01, 0.99), sign > 0 ? -1.0 : 2.0}, axis_dir(2, sign)}, {in_a ? 14 : 8, true, false});
-        b.add({{sign > 0 ? -1.0 : 3.0, b.uniform(0.01, 0.99), b.uniform(0.01, 0.99)}, axis_dir(0, sign)},
+        b.add({{px, b.uniform(0.01, 0.99), sign > 0 ? -1.0 : 2.0}, axis_unit(2, sign)}, {in_a ? 14 : 8, true, false});
+        b.add({{sign > 0 ? -1.0 : 3.0, b.uniform(0.01, 0.99), b.uniform(0.01, 0.99)}, axis_unit(0, sign)},
               {22, true, false});
       }
       for (double px : {0.0, 0.25, 0.5, 1.0, 1.5, 2.0})
@@ -190,7 +175,7 @@ Case build_case(Family f, const Xform& x) {
           for (double sign : {1.0, -1.0}) {
             int count = 0;
             if (half_open(py, 0, 1)) count = half_open(px, 0, 1) ? 14 : (half_open(px, 1, 2) ? 8 : 0);
-            b.add({{px, py, sign > 0 ? -1.0 : 2.0}, axis_dir(2, sign)}, {count, true, false});
+            b.add({{px, py, sign > 0 ? -1.0 : 2.0}, axis_unit(2, sign)}, {count, true, false});
           }
       b.add_random(60, {-1, true, false});
       return std::move(b.c);
@@ -227,13 +212,13 @@ Case build_case(Family f, const Xform& x) {
         const double px = (double(b.rng() % 16) + b.uniform(0.2, 0.8)) / 16;
         const double py = (double(b.rng() % 16) + b.uniform(0.2, 0.8)) / 16;
         const double sign = i % 2 ? 1.0 : -1.0;
-        b.add({{px, py, 0.5 - sign}, axis_dir(2, sign)}, {covering(px, py), false, false});
+        b.add({{px, py, 0.5 - sign}, axis_unit(2, sign)}, {covering(px, py), false, false});
       }
       // Axis rays through grid points: corners and edges of squares, half-open rule.
       for (int gx = 0; gx <= 16; gx += 1)
         for (int gy = 0; gy <= 16; gy += 2) {
           const double px = gx / 16.0, py = gy / 16.0, sign = (gx + gy / 2) % 2 ? 1.0 : -1.0;
-          b.add({{px, py, 0.5 - sign}, axis_dir(2, sign)}, {covering(px, py), false, false});
+          b.add({{px, py, 0.5 - sign}, axis_unit(2, sign)}, {covering(px, py), false, false});
         }
       // Oblique rays: the plane point decides, when generic.
       for (int i = 0; i < 60; ++i) {
@@ -262,7 +247,7 @@ Case build_case(Family f, const Xform& x) {
             for (int j = 0; j <= 2 * n; ++j) {
               const double p = i / 2.0, q = j / 2.0;
               const bool in = half_open(p, 0, n) && half_open(q, 0, n);
-              b.add({point(axis, sign > 0 ? -1.0 : n + 1.0, p, q), axis_dir(axis, sign)}, {in ? per : 0, true, true});
+              b.add({on_plane(axis, sign > 0 ? -1.0 : n + 1.0, p, q), axis_unit(axis, sign)}, {in ? per : 0, true, true});
             }
       // Diagonal rays through integer points (through edges and vertices shared by up to 8 cubes).
       const Vec3d dirs[] = {{1, 1, 0},  {1, -1, 0}, {0, 1, 1},  {1, 0, -1}, {1, 1, 1},  {1, -1, 1},
@@ -275,7 +260,7 @@ Case build_case(Family f, const Xform& x) {
       // Rays starting on grid points inside (thickness rays): surfaces at t = 0.
       for (int i = 0; i < 60; ++i) {
         const Vec3d p{double(b.rng() % (n + 1)), double(b.rng() % (2 * n + 1)) / 2, double(b.rng() % (n + 1))};
-        const Vec3d d = i % 3 == 0 ? axis_dir(int(i / 3) % 3, (i / 9) % 2 ? 1.0 : -1.0) : dirs[std::size_t(i) % std::size(dirs)];
+        const Vec3d d = i % 3 == 0 ? axis_unit(int(i / 3) % 3, (i / 9) % 2 ? 1.0 : -1.0) : dirs[std::size_t(i) % std::size(dirs)];
         b.add({p, d}, {});
       }
       b.add_random(60, {-1, true, true});
@@ -292,7 +277,7 @@ Case build_case(Family f, const Xform& x) {
         b.add({mid - dir * (layers * 0.05 + 1), dir}, {2 * layers, true, true});
       }
       for (int k : {1, 300, 599})
-        b.add({{-1.0, b.uniform(0.01, 0.99), k * 0.1}, axis_dir(0, 1.0)}, {2, true, true});
+        b.add({{-1.0, b.uniform(0.01, 0.99), k * 0.1}, axis_unit(0, 1.0)}, {2, true, true});
       return std::move(b.c);
     }
   }

@@ -17,21 +17,6 @@ bool hit_triangle(const Ray& ray, Vec3d a, Vec3d b, Vec3d c, TriangleHit<T>& th)
   return intersect(r, Vec3<T>(a), Vec3<T>(b), Vec3<T>(c), r.tmin, r.tmax, th);
 }
 
-Vec3d unit(int axis, double s = 1.0) {
-  Vec3d v{0, 0, 0};
-  v[std::size_t(axis)] = s;
-  return v;
-}
-
-// Point with coordinate `w` on `axis` and (p, q) on the next two axes (right-handed frame).
-Vec3d on_plane(int axis, double w, double p, double q) {
-  Vec3d v;
-  v[std::size_t(axis)] = w;
-  v[std::size_t((axis + 1) % 3)] = p;
-  v[std::size_t((axis + 2) % 3)] = q;
-  return v;
-}
-
 // Independent reference in double: Möller-Trumbore without tie handling, for generic rays only.
 struct MtHit {
   bool hit;
@@ -70,7 +55,7 @@ TYPED_TEST(TriangleTest, AxisRaysHitMissAndFacing) {
           Vec3d a = on_plane(axis, 0.5, 0, 0), b = on_plane(axis, 0.5, 1, 0), c = on_plane(axis, 0.5, 0, 1);
           if (flip) std::swap(b, c);
           const Vec3d normal = cross(b - a, c - a);
-          const Vec3d dir = unit(axis, sign * speed);
+          const Vec3d dir = axis_unit(axis, sign * speed);
           const bool expect_enter = dot(dir, normal) < 0;
           // Origin 2 units before the plane: t = 2 / speed.
           const Ray hit_ray{on_plane(axis, 0.5 - 2 * sign, 0.2, 0.3), dir};
@@ -86,7 +71,7 @@ TYPED_TEST(TriangleTest, AxisRaysHitMissAndFacing) {
             EXPECT_FALSE(hit_triangle<T>(miss, a, b, c, th)) << p << ", " << q;
           }
           // The plane is behind the ray.
-          const Ray away{on_plane(axis, 0.5 - 2 * sign, 0.2, 0.3), unit(axis, -sign * speed)};
+          const Ray away{on_plane(axis, 0.5 - 2 * sign, 0.2, 0.3), axis_unit(axis, -sign * speed)};
           EXPECT_FALSE(hit_triangle<T>(away, a, b, c, th));
           // The segment ends before / just after the plane.
           Ray short_ray = hit_ray;

@@ -12,23 +12,27 @@
 #include <string>
 #include <vector>
 
+#include "../common/test_world.h"
 #include "pierce/generators.h"
 #include "pierce/kernel.h"
 #include "pierce/kernels/bvh_common.h"
 
 namespace pierce::test {
 
-// Accel keeps pointers into the scene and into itself: keep both in place.
-struct World {
-  Scene scene;
-  Accel accel;
-  explicit World(Scene s) : scene(std::move(s)), accel(scene) {}
-  World(const World&) = delete;
-  World& operator=(const World&) = delete;
-};
+// `s` times the unit vector along `axis`.
+inline Vec3d axis_unit(int axis, double s = 1.0) {
+  Vec3d v{0, 0, 0};
+  v[std::size_t(axis)] = s;
+  return v;
+}
 
-inline std::unique_ptr<World> make_world(const std::vector<gen::Mesh>& meshes) {
-  return std::make_unique<World>(gen::to_scene(meshes));
+// Point with coordinate `w` on `axis` and (p, q) on the next two axes (right-handed frame).
+inline Vec3d on_plane(int axis, double w, double p, double q) {
+  Vec3d v;
+  v[std::size_t(axis)] = w;
+  v[std::size_t((axis + 1) % 3)] = p;
+  v[std::size_t((axis + 2) % 3)] = q;
+  return v;
 }
 
 inline std::vector<KernelKind> exact_kernels() {

@@ -18,4 +18,22 @@ expected = [1.0] * 4 + [2.0] * 4 + [3.0] * 4
 if values != expected:
     print("FAIL: thickness %s, expected %s" % (values, expected))
     sys.exit(1)
+
+# The enum options also take core's names (the codes are positions in core's tables), and an
+# unknown name leaves the option as it was.
+g = vtkPierceThickness()
+g.SetMethod("cone")
+g.SetSampleAt("face")
+g.SetConeAggregate("median")
+names = (g.GetMethodAsString(), g.GetSampleAtAsString(), g.GetConeAggregateAsString())
+codes = (g.GetMethod(), g.GetSampleAt(), g.GetConeAggregate())
+if names != ("cone", "face", "median") or codes != (vtkPierceThickness.CONE, vtkPierceThickness.CELLS,
+                                                    vtkPierceThickness.MEDIAN):
+    print("FAIL: options by name gave %s %s" % (names, codes))
+    sys.exit(1)
+g.GlobalWarningDisplayOff()  # the error for the unknown name below is expected
+g.SetMethod("laser")
+if g.GetMethod() != vtkPierceThickness.CONE:
+    print("FAIL: an unknown method name changed the method to %d" % g.GetMethod())
+    sys.exit(1)
 print("pierce_vtk ok under " + sys.executable)

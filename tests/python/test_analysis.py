@@ -29,6 +29,18 @@ def sphere_mesh(radius, subdivisions=4, inward=False, name="sphere"):
 
 
 class ThicknessTest(unittest.TestCase):
+    def test_option_names_come_from_core_and_are_accepted(self):
+        self.assertEqual(pierce.thickness_methods(), ["ray", "cone", "sphere"])
+        self.assertEqual(pierce.thickness_samplings(), ["vertex", "face"])
+        self.assertEqual(pierce.cone_aggregates(), ["shapira", "median"])
+        self.assertEqual(pierce.THICKNESS_STATUS, ("ok", "no_exit", "no_normal"))
+        s = scene_of(gen.box((0, 0, 0), (1, 1, 1), "a"))
+        for method in pierce.thickness_methods():
+            for per in pierce.thickness_samplings():
+                self.assertEqual(pierce.thickness(s, method=method, per=per, cone_rays=4).per, per)
+        with self.assertRaisesRegex(ValueError, r"unknown thickness method 'laser' \(expected one of: ray, cone, sphere\)"):
+            pierce.thickness(s, method="laser")
+
     def test_touching_boxes_each_their_own_width(self):
         s = scene_of(gen.box((0, 0, 0), (10, 10, 10), "a"), gen.box((10, 0, 0), (13, 10, 10), "b"))
         r = pierce.thickness(s, per="face")

@@ -78,7 +78,7 @@ class TraceTest(unittest.TestCase):
             pierce.trace(s, [[0, 0, 0], [0, 0, 0]], [[0, 0, 1], [0, 0, 0]])
         with self.assertRaisesRegex(pierce.InputError, "ray 0: origin is not finite"):
             pierce.trace(s, [[np.inf, 0, 0]], [[0, 0, 1]])
-        with self.assertRaisesRegex(ValueError, "unknown kernel 'fast'.*queue"):
+        with self.assertRaisesRegex(ValueError, r"unknown kernel 'fast' \(expected one of: epsilon, .*queue"):
             pierce.trace(s, [[0, 0, 0]], [[0, 0, 1]], kernel="fast")
         with self.assertRaisesRegex(ValueError, "same length"):
             pierce.trace(s, [[0, 0, 0]], [[0, 0, 1], [0, 0, 1]])

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <string>
 
 #include <vtkCellArray.h>
@@ -20,6 +19,7 @@
 #include "PierceVTKProgress.h"
 #include "PierceVTKRays.h"
 #include "PierceVTKSurfaces.h"
+#include "pierce/analysis/obliquity.h"
 #include "pierce/kernel.h"
 
 namespace pierce_vtk {
@@ -27,16 +27,6 @@ namespace {
 
 // Rays per trace_batch call: bounds the memory of the hit lists, which can be long.
 constexpr std::size_t kChunk = 8192;
-
-// Angle in degrees between the ray and the surface normal of a crossing; NaN without one.
-double Obliquity(const pierce::Hit& hit, const pierce::Vec3d& unit_dir) {
-  if (!hit.valid()) return std::numeric_limits<double>::quiet_NaN();
-  const pierce::Vec3d n(hit.ng);
-  const double len = pierce::length(n);
-  if (!(len > 0.0)) return std::numeric_limits<double>::quiet_NaN();
-  const double c = std::min(1.0, std::abs(pierce::dot(n, unit_dir)) / len);
-  return std::acos(c) * 180.0 / std::numbers::pi;
-}
 
 template <typename Array>
 vtkSmartPointer<Array> NewArray(const char* name) {
@@ -76,7 +66,8 @@ class Writer {
       list += std::to_string(s.solids[k]);
       names += surfaces_.scene.geometry(s.solids[k]).name;
     }
-    const double obl_in = Obliquity(*s.in_hit, s.ray->dir), obl_out = Obliquity(*s.out_hit, s.ray->dir);
+    const double obl_in = pierce::analysis::obliquity_deg(s.ray->dir, *s.in_hit),
+                 obl_out = pierce::analysis::obliquity_deg(s.ray->dir, *s.out_hit);
     ray_id_->InsertNextValue(s.ray_id);
     solid_id_->InsertNextValue(solid);
     solid_count_->InsertNextValue(int(s.count));

@@ -30,19 +30,6 @@ namespace pierce_vtk {
 
 namespace pa = pierce::analysis;
 
-pa::ThicknessOptions ToThicknessOptions(const ThicknessSettings& s) {
-  pa::ThicknessOptions o;
-  o.method = s.method == 1 ? pa::ThicknessMethod::cone
-                           : (s.method == 2 ? pa::ThicknessMethod::sphere : pa::ThicknessMethod::ray);
-  o.per = s.sample_at == 1 ? pa::SampleAt::face : pa::SampleAt::vertex;
-  o.max_distance = s.max_distance > 0.0 ? s.max_distance : std::numeric_limits<double>::infinity();
-  o.min_thickness = s.min_thickness;
-  o.cone_rays = s.cone_rays;
-  o.cone_angle_deg = s.cone_angle;
-  o.cone_aggregate = s.cone_aggregate == 1 ? pa::ConeAggregate::median : pa::ConeAggregate::shapira;
-  return o;
-}
-
 void AttachThickness(const pa::ThicknessResult& result, Surfaces& surfaces) {
   const bool per_cell = result.per == pa::SampleAt::face;
   struct Arrays {

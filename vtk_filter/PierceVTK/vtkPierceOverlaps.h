@@ -28,15 +28,15 @@
 #define vtkPierceOverlaps_h
 
 #include "PierceVTKModule.h"
-#include "vtkDataObjectAlgorithm.h"
+#include "vtkPierceSurfaceAlgorithm.h"
 
 class vtkTable;
 
-class PIERCEVTK_EXPORT vtkPierceOverlaps : public vtkDataObjectAlgorithm
+class PIERCEVTK_EXPORT vtkPierceOverlaps : public vtkPierceSurfaceAlgorithm
 {
 public:
   static vtkPierceOverlaps* New();
-  vtkTypeMacro(vtkPierceOverlaps, vtkDataObjectAlgorithm);
+  vtkTypeMacro(vtkPierceOverlaps, vtkPierceSurfaceAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -74,16 +74,6 @@ public:
   vtkGetMacro(EpsilonRel, double);
   ///@}
 
-  ///@{
-  /**
-   * Under MPI (pvserver, pvbatch), every rank holds the whole surface: refuse, with an error
-   * naming the size, when it would take more than this many MB per rank. <= 0: no limit.
-   * Default 4096.
-   */
-  vtkSetMacro(MaxReplicatedMB, double);
-  vtkGetMacro(MaxReplicatedMB, double);
-  ///@}
-
   /**
    * Output 1, the solid-pair table.
    */
@@ -93,16 +83,12 @@ protected:
   vtkPierceOverlaps();
   ~vtkPierceOverlaps() override;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
-  int FillOutputPortInformation(int port, vtkInformation* info) override;
-  int RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   bool FindCoplanar;
   double Tolerance;
   int RaysPerAxis;
   double EpsilonRel;
-  double MaxReplicatedMB;
 
 private:
   vtkPierceOverlaps(const vtkPierceOverlaps&) = delete;

@@ -13,6 +13,7 @@
 #include <vtkTable.h>
 
 #include "PierceVTKDistributed.h"
+#include "PierceVTKFilterSteps.h"
 #include "PierceVTKPartitions.h"
 #include "PierceVTKProgress.h"
 #include "PierceVTKRays.h"
@@ -55,12 +56,7 @@ vtkTable* vtkPierceRayClassify::GetTableOutput()
 
 int vtkPierceRayClassify::FillInputPortInformation(int port, vtkInformation* info)
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
-  if (port == 0)
-  {
-    info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet");
-  }
-  return 1;
+  return pierce_vtk::FillSolidsInputInformation(port, info);
 }
 
 int vtkPierceRayClassify::FillOutputPortInformation(int port, vtkInformation* info)
@@ -73,25 +69,17 @@ int vtkPierceRayClassify::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   this->InconsistentRays = 0;
-  const pierce_vtk::Distribution distribution;
-  pierce_vtk::StageTimer timer;
-  pierce_vtk::Surfaces surfaces;
-  std::string error, info;
-  if (!distribution.ExtractSurfaces(
-        vtkDataObject::GetData(inputVector[0], 0), this->MaxReplicatedMB, true, surfaces, error, info))
+  pierce_vtk::SurfaceRun run;
+  if (!run.Gather(this, vtkDataObject::GetData(inputVector[0], 0), this->MaxReplicatedMB, true))
   {
-    vtkErrorMacro(<< error);
     return 0;
   }
-  for (const std::string& warning : surfaces.warnings)
-  {
-    vtkWarningMacro(<< warning);
-  }
-
-  timer.Stage("gather");
+  const pierce_vtk::Distribution& distribution = run.distribution;
+  const pierce_vtk::Surfaces& surfaces = run.surfaces;
   // The rays stay where they are: each rank shoots its own (not its ghosts).
   vtkDataSet* rayInput = vtkDataSet::GetData(inputVector[1], 0);
   vtkDataArray* directions = nullptr;
+  std::string error;
   bool ok = true;
   if (this->UseDirectionArray && rayInput && rayInput->GetNumberOfPoints() > 0)
   {
@@ -133,7 +121,7 @@ int vtkPierceRayClassify::RequestData(
   pierce_vtk::ProgressBridge progress(this);
   pierce_vtk::ClassifiedRays classified;
   const bool completed = pierce_vtk::ClassifyRays(surfaces.scene, rays.rays, progress, classified);
-  timer.Stage("BVH build and trace");
+  run.timer.Stage("BVH build and trace");
   if (!distribution.AllTrue(completed))
   {
     return 1; // aborted: the executive hands out empty outputs
@@ -149,7 +137,7 @@ int vtkPierceRayClassify::RequestData(
   pierce_vtk::WritePartitions(
     classified, rays, surfaces, this->IncludeGaps, vtkPolyData::GetData(outputVector, 0), table);
   distribution.GatherTableRows(table);
-  pierce_vtk::ReportDistributedRun("Pierce Ray Classify", distribution, info, timer);
+  pierce_vtk::ReportDistributedRun("Pierce Ray Classify", distribution, run.info, run.timer);
   return 1;
 }
 

@@ -1,22 +1,112 @@
 #include "vtkPierceThickness.h"
 
+#include <limits>
 #include <stdexcept>
 #include <string>
 
-#include <vtkCompositeDataSet.h>
 #include <vtkDataObject.h>
-#include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkObjectFactory.h>
 #include <vtkTable.h>
 
 #include "PierceVTKDistributed.h"
+#include "PierceVTKEnums.h"
+#include "PierceVTKFilterSteps.h"
 #include "PierceVTKProgress.h"
 #include "PierceVTKSurfaces.h"
 #include "PierceVTKThickness.h"
 #include "pierce/kernel.h"
 
 vtkStandardNewMacro(vtkPierceThickness);
+
+namespace
+{
+namespace pa = pierce::analysis;
+using pierce_vtk::IsCodeOf;
+
+// The filter's enum codes are positions in core's name tables (PierceVTKEnums.h).
+static_assert(IsCodeOf(vtkPierceThickness::RAY, pa::ThicknessMethod::ray) &&
+  IsCodeOf(vtkPierceThickness::CONE, pa::ThicknessMethod::cone) &&
+  IsCodeOf(vtkPierceThickness::SPHERE, pa::ThicknessMethod::sphere));
+static_assert(IsCodeOf(vtkPierceThickness::POINTS, pa::SampleAt::vertex) &&
+  IsCodeOf(vtkPierceThickness::CELLS, pa::SampleAt::face));
+static_assert(IsCodeOf(vtkPierceThickness::SHAPIRA, pa::ConeAggregate::shapira) &&
+  IsCodeOf(vtkPierceThickness::MEDIAN, pa::ConeAggregate::median));
+
+pa::ThicknessOptions ThicknessOptionsOf(vtkPierceThickness& filter)
+{
+  pa::ThicknessOptions o;
+  o.method = pierce_vtk::EnumAt<pa::ThicknessMethod>(filter.GetMethod());
+  o.per = pierce_vtk::EnumAt<pa::SampleAt>(filter.GetSampleAt());
+  o.max_distance =
+    filter.GetMaxDistance() > 0.0 ? filter.GetMaxDistance() : std::numeric_limits<double>::infinity();
+  o.min_thickness = filter.GetMinThickness();
+  o.cone_rays = filter.GetConeRays();
+  o.cone_angle_deg = filter.GetConeAngle();
+  o.cone_aggregate = pierce_vtk::EnumAt<pa::ConeAggregate>(filter.GetConeAggregate());
+  return o;
+}
+
+// Sets `code` to the code of core's name `name`; reports an unknown name on `filter`.
+template <class E>
+bool SetCodeByName(vtkPierceThickness* filter, const char* name, int& code)
+{
+  try
+  {
+    const int parsed = pierce_vtk::EnumCodeOf<E>(name ? name : "");
+    if (parsed == code)
+    {
+      return false;
+    }
+    code = parsed;
+    return true;
+  }
+  catch (const std::invalid_argument& e)
+  {
+    vtkErrorWithObjectMacro(filter, << e.what());
+    return false;
+  }
+}
+} // namespace
+
+void vtkPierceThickness::SetMethod(const char* name)
+{
+  if (SetCodeByName<pa::ThicknessMethod>(this, name, this->Method))
+  {
+    this->Modified();
+  }
+}
+
+void vtkPierceThickness::SetSampleAt(const char* name)
+{
+  if (SetCodeByName<pa::SampleAt>(this, name, this->SampleAt))
+  {
+    this->Modified();
+  }
+}
+
+void vtkPierceThickness::SetConeAggregate(const char* name)
+{
+  if (SetCodeByName<pa::ConeAggregate>(this, name, this->ConeAggregate))
+  {
+    this->Modified();
+  }
+}
+
+const char* vtkPierceThickness::GetMethodAsString()
+{
+  return pierce_vtk::EnumNameAt<pa::ThicknessMethod>(this->Method);
+}
+
+const char* vtkPierceThickness::GetSampleAtAsString()
+{
+  return pierce_vtk::EnumNameAt<pa::SampleAt>(this->SampleAt);
+}
+
+const char* vtkPierceThickness::GetConeAggregateAsString()
+{
+  return pierce_vtk::EnumNameAt<pa::ConeAggregate>(this->ConeAggregate);
+}
 
 vtkPierceThickness::vtkPierceThickness()
   : Method(RAY)
@@ -26,10 +116,7 @@ vtkPierceThickness::vtkPierceThickness()
   , ConeRays(30)
   , ConeAngle(120.0)
   , ConeAggregate(SHAPIRA)
-  , MaxReplicatedMB(4096.0)
 {
-  this->SetNumberOfInputPorts(1);
-  this->SetNumberOfOutputPorts(2);
 }
 
 vtkPierceThickness::~vtkPierceThickness() = default;
@@ -39,53 +126,17 @@ vtkTable* vtkPierceThickness::GetStatisticsOutput()
   return vtkTable::SafeDownCast(this->GetOutputDataObject(1));
 }
 
-int vtkPierceThickness::FillInputPortInformation(int, vtkInformation* info)
-{
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
-  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet");
-  return 1;
-}
-
-int vtkPierceThickness::FillOutputPortInformation(int port, vtkInformation* info)
-{
-  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkDataObject" : "vtkTable");
-  return 1;
-}
-
-int vtkPierceThickness::RequestDataObject(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
-{
-  return pierce_vtk::RequestSurfaceDataObject(inputVector, outputVector);
-}
-
 int vtkPierceThickness::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
-  const pierce_vtk::Distribution distribution;
-  pierce_vtk::StageTimer timer;
-  pierce_vtk::Surfaces surfaces;
-  std::string error, info;
-  if (!distribution.ExtractSurfaces(input, this->MaxReplicatedMB, false, surfaces, error, info))
+  pierce_vtk::SurfaceRun run;
+  if (!run.Gather(this, input, this->MaxReplicatedMB, false))
   {
-    vtkErrorMacro(<< error);
     return 0;
   }
-  for (const std::string& warning : surfaces.warnings)
-  {
-    vtkWarningMacro(<< warning);
-  }
-  timer.Stage("gather");
-
-  pierce_vtk::ThicknessSettings settings;
-  settings.method = this->Method;
-  settings.sample_at = this->SampleAt;
-  settings.max_distance = this->MaxDistance;
-  settings.min_thickness = this->MinThickness;
-  settings.cone_rays = this->ConeRays;
-  settings.cone_angle = this->ConeAngle;
-  settings.cone_aggregate = this->ConeAggregate;
-  pierce::analysis::ThicknessOptions options = pierce_vtk::ToThicknessOptions(settings);
+  const pierce_vtk::Surfaces& surfaces = run.surfaces;
+  pierce::analysis::ThicknessOptions options = ThicknessOptionsOf(*this);
   const bool perCell = this->SampleAt == CELLS;
   pierce_vtk::VertexOwners owners;
   if (surfaces.distributed)
@@ -99,58 +150,46 @@ int vtkPierceThickness::RequestData(
 
   pierce_vtk::ProgressBridge progress(this, 0.05, 1.0);
   pierce::analysis::ThicknessResult result;
-  bool ok = true;
-  try
+  if (!pierce_vtk::RunOnEveryRank(this, run.distribution, [&] {
+        const pierce::Accel accel(surfaces.scene);
+        run.timer.Stage("BVH build");
+        this->UpdateProgress(0.05);
+        result = pierce::analysis::compute_thickness(accel, options, progress.Callback());
+        run.timer.Stage("trace");
+      }))
   {
-    const pierce::Accel accel(surfaces.scene);
-    timer.Stage("BVH build");
-    this->UpdateProgress(0.05);
-    result = pierce::analysis::compute_thickness(accel, options, progress.Callback());
-    timer.Stage("trace");
-  }
-  catch (const std::exception& e)
-  {
-    error = e.what();
-    ok = false;
-  }
-  if (!distribution.AllTrue(ok))
-  {
-    vtkErrorMacro(<< (ok ? std::string("the analysis failed on another rank") : error));
     return 0;
   }
-  if (!distribution.AllTrue(result.completed && !progress.CheckAbort()))
+  if (!run.distribution.AllTrue(result.completed && !progress.CheckAbort()))
   {
     return 1; // aborted: the executive hands out empty outputs
   }
   if (surfaces.distributed)
   {
-    info += "; " + pierce_vtk::DescribeSampleSplit(result, perCell, owners, distribution);
+    run.info += "; " + pierce_vtk::DescribeSampleSplit(result, perCell, owners, run.distribution);
     if (!perCell)
     {
-      pierce_vtk::ShareVertexResults(surfaces, owners, distribution, result);
+      pierce_vtk::ShareVertexResults(surfaces, owners, run.distribution, result);
     }
   }
-  pierce_vtk::AttachThickness(result, surfaces);
-  vtkDataObject* output = vtkDataObject::GetData(outputVector, 0);
-  pierce_vtk::StoreSurfaces(surfaces, input, output);
-  pierce_vtk::AddSolidNames(surfaces, output->GetFieldData());
+  pierce_vtk::AttachThickness(result, run.surfaces);
+  pierce_vtk::StoreSurfaceOutput(surfaces, input, vtkDataObject::GetData(outputVector, 0));
   const std::vector<pierce::analysis::SolidThickness> statistics = surfaces.distributed
-    ? pierce_vtk::GatherThicknessStatistics(surfaces, perCell, options, distribution)
+    ? pierce_vtk::GatherThicknessStatistics(surfaces, perCell, options, run.distribution)
     : result.solids;
   pierce_vtk::WriteThicknessTable(statistics, options.percentiles, vtkTable::GetData(outputVector, 1));
-  pierce_vtk::ReportDistributedRun("Pierce Thickness", distribution, info, timer);
+  pierce_vtk::ReportDistributedRun("Pierce Thickness", run.distribution, run.info, run.timer);
   return 1;
 }
 
 void vtkPierceThickness::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Method: " << this->Method << "\n";
-  os << indent << "SampleAt: " << this->SampleAt << "\n";
+  os << indent << "Method: " << this->GetMethodAsString() << "\n";
+  os << indent << "SampleAt: " << this->GetSampleAtAsString() << "\n";
   os << indent << "MaxDistance: " << this->MaxDistance << "\n";
   os << indent << "MinThickness: " << this->MinThickness << "\n";
   os << indent << "ConeRays: " << this->ConeRays << "\n";
   os << indent << "ConeAngle: " << this->ConeAngle << "\n";
-  os << indent << "ConeAggregate: " << this->ConeAggregate << "\n";
-  os << indent << "MaxReplicatedMB: " << this->MaxReplicatedMB << "\n";
+  os << indent << "ConeAggregate: " << this->GetConeAggregateAsString() << "\n";
 }

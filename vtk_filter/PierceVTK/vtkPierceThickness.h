@@ -25,15 +25,15 @@
 #define vtkPierceThickness_h
 
 #include "PierceVTKModule.h"
-#include "vtkDataObjectAlgorithm.h"
+#include "vtkPierceSurfaceAlgorithm.h"
 
 class vtkTable;
 
-class PIERCEVTK_EXPORT vtkPierceThickness : public vtkDataObjectAlgorithm
+class PIERCEVTK_EXPORT vtkPierceThickness : public vtkPierceSurfaceAlgorithm
 {
 public:
   static vtkPierceThickness* New();
-  vtkTypeMacro(vtkPierceThickness, vtkDataObjectAlgorithm);
+  vtkTypeMacro(vtkPierceThickness, vtkPierceSurfaceAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum Methods
@@ -53,12 +53,17 @@ public:
     MEDIAN = 1
   };
 
+  // The codes are the positions of the values in core's name tables (pierce/enum_names.h); the
+  // string forms take and give core's names, as `pierce thickness` does ("ray", "vertex", ...).
+
   ///@{
   /**
-   * Thickness method: RAY (default), CONE or SPHERE.
+   * Thickness method: RAY (default), CONE or SPHERE; or by name: "ray", "cone", "sphere".
    */
   vtkSetClampMacro(Method, int, RAY, SPHERE);
   vtkGetMacro(Method, int);
+  void SetMethod(const char* name);
+  const char* GetMethodAsString();
   void SetMethodToRay() { this->SetMethod(RAY); }
   void SetMethodToCone() { this->SetMethod(CONE); }
   void SetMethodToSphere() { this->SetMethod(SPHERE); }
@@ -66,10 +71,13 @@ public:
 
   ///@{
   /**
-   * Sample at POINTS (default: point arrays) or CELLS (triangle centroids: cell arrays).
+   * Sample at POINTS (default: point arrays) or CELLS (triangle centroids: cell arrays); or by
+   * name: "vertex", "face".
    */
   vtkSetClampMacro(SampleAt, int, POINTS, CELLS);
   vtkGetMacro(SampleAt, int);
+  void SetSampleAt(const char* name);
+  const char* GetSampleAtAsString();
   ///@}
 
   ///@{
@@ -91,7 +99,8 @@ public:
   ///@{
   /**
    * Cone method: rays per sample (default 30), full opening angle in degrees (default 120),
-   * aggregation SHAPIRA (outlier-rejecting weighted mean, default) or MEDIAN.
+   * aggregation SHAPIRA (outlier-rejecting weighted mean, default) or MEDIAN (by name:
+   * "shapira", "median").
    */
   vtkSetClampMacro(ConeRays, int, 1, 10000);
   vtkGetMacro(ConeRays, int);
@@ -99,16 +108,8 @@ public:
   vtkGetMacro(ConeAngle, double);
   vtkSetClampMacro(ConeAggregate, int, SHAPIRA, MEDIAN);
   vtkGetMacro(ConeAggregate, int);
-  ///@}
-
-  ///@{
-  /**
-   * Under MPI (pvserver, pvbatch), every rank holds the whole surface: refuse, with an error
-   * naming the size, when it would take more than this many MB per rank. <= 0: no limit.
-   * Default 4096.
-   */
-  vtkSetMacro(MaxReplicatedMB, double);
-  vtkGetMacro(MaxReplicatedMB, double);
+  void SetConeAggregate(const char* name);
+  const char* GetConeAggregateAsString();
   ///@}
 
   /**
@@ -120,9 +121,6 @@ protected:
   vtkPierceThickness();
   ~vtkPierceThickness() override;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
-  int FillOutputPortInformation(int port, vtkInformation* info) override;
-  int RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   int Method;
@@ -132,7 +130,6 @@ protected:
   int ConeRays;
   double ConeAngle;
   int ConeAggregate;
-  double MaxReplicatedMB;
 
 private:
   vtkPierceThickness(const vtkPierceThickness&) = delete;

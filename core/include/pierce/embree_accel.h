@@ -15,6 +15,11 @@
 
 namespace pierce {
 
+// Adds `scene`'s triangles to `target` as Embree's own triangle geometries (float vertices), one
+// per Pierce geometry, attached in order so that Embree's geometry ids are Pierce's. Does not
+// commit `target`.
+void attach_native_triangles(RTCDevice device, RTCScene target, const Scene& scene);
+
 class EmbreeAccel {
  public:
   // `tris` must outlive this object (it is the float BVH's triangle array).

@@ -15,12 +15,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
-constexpr std::pair<Effect, std::string_view> kNames[] = {
-    {Effect::first_hit, "first_hit"}, {Effect::thickness, "thickness"},     {Effect::transparency, "transparency"},
-    {Effect::xray, "xray"},           {Effect::penetration, "penetration"}, {Effect::overlaps, "overlaps"},
-    {Effect::classification, "classification"},
-};
-
 using Clock = std::chrono::steady_clock;
 
 std::size_t idx(Effect e) { return std::size_t(e); }
@@ -434,18 +428,6 @@ void allocate(EffectsResult& r, const EffectsConfig& cfg, std::size_t n) {
 }
 
 }  // namespace
-
-std::string_view effect_name(Effect e) {
-  for (const auto& [k, n] : kNames)
-    if (k == e) return n;
-  return "?";
-}
-
-std::optional<Effect> parse_effect(std::string_view name) {
-  for (const auto& [k, n] : kNames)
-    if (n == name) return k;
-  return std::nullopt;
-}
 
 bool needs_partitions(Effect e) {
   return e == Effect::xray || e == Effect::penetration || e == Effect::overlaps || e == Effect::classification;

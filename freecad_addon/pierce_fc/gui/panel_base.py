@@ -97,6 +97,34 @@ class PanelBase:
     def report(self, text):
         FreeCAD.Console.PrintMessage(text + "\n")
 
+    # --- helpers for build_options() and compute() ---
+    def options_form(self, layout, title):
+        """A group box called `title` added to `layout`; returns its form layout for the rows."""
+        box = QtWidgets.QGroupBox(title)
+        layout.addWidget(box)
+        return QtWidgets.QFormLayout(box)
+
+    def solids_to_analyse(self, whole_document=False):
+        """The objects a run works on: every visible solid of the active document, or the
+        current selection (a group or App::Part selects its contents)."""
+        if whole_document:
+            return visible_solids(FreeCAD.ActiveDocument)
+        return selected_objects()
+
+    def in_transaction(self, name, work):
+        """Calls work(doc) on the active document inside one undo step called `name`: committed
+        when it returns, aborted when it raises (a failure, or Stop), so that a run that did not
+        finish leaves nothing in the document. Returns what work returned."""
+        doc = FreeCAD.ActiveDocument
+        doc.openTransaction(name)
+        try:
+            result = work(doc)
+        except BaseException:
+            doc.abortTransaction()
+            raise
+        doc.commitTransaction()
+        return result
+
     # --- task dialog protocol ---
     def getStandardButtons(self):
         return int(QtWidgets.QDialogButtonBox.Close)

@@ -1,12 +1,11 @@
 """Task panel: overlap check; clicking a row selects the faces (or solids) involved."""
 import math
 
-import FreeCAD
 import FreeCADGui as Gui
 
 from .. import overlap_check
 from ..overlap_check import OverlapOptions
-from .panel_base import PanelBase, double_spin, selected_objects, visible_solids
+from .panel_base import PanelBase, double_spin
 from .qt import QtWidgets
 
 COLUMNS = ["Finding", "Solid A", "Solid B", "Depth (mm)", "Area (mm²)", "Faces"]
@@ -17,8 +16,7 @@ class OverlapPanel(PanelBase):
     RUN_TEXT = "Check overlaps"
 
     def build_options(self, layout):
-        box = QtWidgets.QGroupBox("Options")
-        f = QtWidgets.QFormLayout(box)
+        f = self.options_form(layout, "Options")
         self.whole_document = QtWidgets.QCheckBox("All visible solids of the document")
         self.whole_document.setToolTip("Otherwise the selected solids (a group or App::Part selects its contents)")
         self.tolerance = double_spin(1e-3, 0.0, 1e6, decimals=6, special="exact only", step=1e-3)
@@ -35,7 +33,6 @@ class OverlapPanel(PanelBase):
         f.addRow("Rays per side", self.grid)
         f.addRow("Deflection", self.deflection)
         f.addRow(self.markers)
-        layout.addWidget(box)
 
     def build_results(self, layout):
         self.table = QtWidgets.QTableWidget(0, len(COLUMNS))
@@ -49,21 +46,11 @@ class OverlapPanel(PanelBase):
         layout.addWidget(self.table)
 
     def compute(self, progress, cancel):
-        doc = FreeCAD.ActiveDocument
-        if self.whole_document.isChecked():
-            objects = visible_solids(doc)
-        else:
-            objects = selected_objects()
+        objects = self.solids_to_analyse(self.whole_document.isChecked())
         opts = OverlapOptions(tolerance=self.tolerance.value(), grid=self.grid.value(),
                               deflection=self.deflection.value(), create_objects=self.markers.isChecked())
-        doc.openTransaction("Pierce overlap check")
-        try:
-            result = overlap_check.run(objects, opts, doc=doc, progress=progress, cancel=cancel)
-        except BaseException:
-            doc.abortTransaction()
-            raise
-        doc.commitTransaction()
-        return result
+        return self.in_transaction("Pierce overlap check", lambda doc: overlap_check.run(
+            objects, opts, doc=doc, progress=progress, cancel=cancel))
 
     def show_result(self, run):
         self.table.setRowCount(0)

@@ -5,7 +5,7 @@ import FreeCADGui as Gui
 from .. import shotline
 from ..errors import SelectionError
 from ..shotline import ShotOptions
-from .panel_base import PanelBase, double_spin, selected_objects, visible_solids
+from .panel_base import PanelBase, double_spin
 from .qt import QtWidgets
 
 COLUMNS = ["Ray", "Kind", "Solids", "In", "Out", "LOS (mm)", "Obliquity in", "Obliquity out", "Normal thickness"]
@@ -16,8 +16,7 @@ class ShotlinePanel(PanelBase):
     RUN_TEXT = "Shoot"
 
     def build_options(self, layout):
-        box = QtWidgets.QGroupBox("Ray")
-        f = QtWidgets.QFormLayout(box)
+        f = self.options_form(layout, "Ray")
         self.mode_point = QtWidgets.QRadioButton("From a point along a direction")
         self.mode_grid = QtWidgets.QRadioButton("Grid through the selected face")
         self.mode_point.setChecked(True)
@@ -44,7 +43,6 @@ class ShotlinePanel(PanelBase):
         f.addRow(self.all_visible)
         f.addRow("CSG expression", self.csg)
         f.addRow(self.markers)
-        layout.addWidget(box)
 
     def build_results(self, layout):
         self.table = QtWidgets.QTableWidget(0, len(COLUMNS))
@@ -73,33 +71,22 @@ class ShotlinePanel(PanelBase):
             w.setValue(x)
         self.set_message("")
 
-    def _objects(self):
-        doc = FreeCAD.ActiveDocument
-        if self.all_visible.isChecked():
-            return visible_solids(doc)
-        return selected_objects()
-
     def compute(self, progress, cancel):
-        doc = FreeCAD.ActiveDocument
         opts = ShotOptions(csg=self.csg.text() or None, create_objects=self.markers.isChecked())
-        objects = self._objects()
-        doc.openTransaction("Pierce shotline")
-        try:
+        objects = self.solids_to_analyse(self.all_visible.isChecked())
+
+        def shoot(doc):
             if self.mode_grid.isChecked():
                 faces = [s for sel in Gui.Selection.getSelectionEx() for s in sel.SubObjects if s.ShapeType == "Face"]
                 if not faces:
                     raise SelectionError("Select a face for the grid of rays.")
-                result = shotline.run_face_grid(objects, faces[0], self.grid.value(), opts, doc=doc,
-                                                progress=progress, cancel=cancel)
-            else:
-                o = [w.value() for w in self.origin]
-                d = [w.value() for w in self.direction]
-                result = shotline.run(objects, [o], [d], opts, doc=doc, progress=progress, cancel=cancel)
-        except BaseException:
-            doc.abortTransaction()
-            raise
-        doc.commitTransaction()
-        return result
+                return shotline.run_face_grid(objects, faces[0], self.grid.value(), opts, doc=doc,
+                                              progress=progress, cancel=cancel)
+            o = [w.value() for w in self.origin]
+            d = [w.value() for w in self.direction]
+            return shotline.run(objects, [o], [d], opts, doc=doc, progress=progress, cancel=cancel)
+
+        return self.in_transaction("Pierce shotline", shoot)
 
     def show_result(self, run):
         rows = run.table()

@@ -1,12 +1,11 @@
 """Task panel: thickness map of the selected solids."""
 import math
 
-import FreeCAD
-
 from .. import thickness_map
+from ..locate import PierceUnavailable
 from ..thickness_map import ThicknessOptions
 from .legend import Legend
-from .panel_base import PanelBase, double_spin, selected_objects
+from .panel_base import PanelBase, double_spin
 from .qt import QtWidgets
 
 
@@ -18,7 +17,10 @@ class ThicknessPanel(PanelBase):
         box = QtWidgets.QGroupBox("Options")
         f = QtWidgets.QFormLayout(box)
         self.method = QtWidgets.QComboBox()
-        self.method.addItems(["ray", "cone", "sphere"])
+        try:
+            self.method.addItems(list(thickness_map.method_names()))
+        except PierceUnavailable:  # the panel still opens; Run says why nothing can be computed
+            self.method.setEnabled(False)
         self.method.setToolTip("ray: along the inward normal to where the ray leaves the solid; cone: shape "
                                "diameter function over 30 rays; sphere: largest inscribed ball")
         self.per = QtWidgets.QComboBox()
@@ -74,16 +76,10 @@ class ThicknessPanel(PanelBase):
                                 color_max=None if auto else self.range_max.value())
 
     def compute(self, progress, cancel):
-        objects = selected_objects()
-        doc = FreeCAD.ActiveDocument
-        doc.openTransaction("Pierce thickness map")
-        try:
-            result = thickness_map.run(objects, self.options(), doc=doc, progress=progress, cancel=cancel)
-        except BaseException:
-            doc.abortTransaction()
-            raise
-        doc.commitTransaction()
-        return result
+        objects = self.solids_to_analyse()
+        options = self.options()
+        return self.in_transaction("Pierce thickness map", lambda doc: thickness_map.run(
+            objects, options, doc=doc, progress=progress, cancel=cancel))
 
     def show_result(self, run):
         lo, hi = run.color_range

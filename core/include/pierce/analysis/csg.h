@@ -6,7 +6,8 @@
 //   op   := union | intersection | difference     difference(a, b, c) = a minus b minus c
 //   name := a bare name (any run of characters other than blanks, ',', '(', ')' and '"'),
 //           a quoted name "..." (\" and \\ escape), or #N for geometry id N.
-// A name stands for every geometry carrying it (their union). A bare word followed by '(' is an
+// A name stands for every geometry carrying it (their union); a bare N that no geometry is named
+// is geometry id N, as everywhere solids are named (solid_reference.h). A bare word followed by '(' is an
 // operation; a solid called e.g. "union" is written as a quoted name.
 //
 // Evaluation: a partition is inside the expression when the expression, read as a boolean function
@@ -20,7 +21,9 @@
 #include <string_view>
 #include <vector>
 
+#include "pierce/analysis/obliquity.h"  // obliquity_deg, declared here before
 #include "pierce/analysis/ray_partitions.h"
+#include "pierce/enum_names.h"
 #include "pierce/kernel.h"
 #include "pierce/scene.h"
 
@@ -42,7 +45,8 @@ struct CsgExpr {
   std::vector<std::uint32_t> solids() const;         // every geometry referenced, ascending, unique
 };
 
-// Parses `text` and binds its names to `scene`'s geometries. Throws InputError:
+// Parses `text` and binds its names to `scene`'s geometries (csg_parser.cpp; the evaluator is in
+// csg_evaluator.cpp, the point classifier in csg_classifier.cpp). Throws InputError:
 //  - "csg expression, column C: <what is wrong>" followed by the expression and a caret line;
 //  - "csg expression: unknown solid name(s) 'x', 'y' (known: ...)" listing every unknown name.
 CsgExpr parse_csg(std::string_view text, const Scene& scene);
@@ -79,7 +83,7 @@ class CsgEvaluator {
 };
 
 enum class PointClass : std::uint8_t { outside, inside, on };
-std::string_view point_class_name(PointClass c);
+inline std::string_view point_class_name(PointClass c);  // enum_name (its table follows the namespace)
 
 // Inside / outside / on of points with respect to an expression, by the same machinery: rays
 // through the point along two fixed skew directions, their partitions, the expression's intervals.
@@ -113,8 +117,14 @@ class PointClassifier {
   std::vector<std::uint32_t> near_, with_, stack_;  // scratch for on_grazed_surface
 };
 
-// Angle in degrees between a ray direction and a surface's normal, in [0, 90]; NaN for an invalid
-// hit or a zero normal. 0 means the ray meets the surface head-on.
-double obliquity_deg(Vec3d dir, const Hit& h);
-
 }  // namespace pierce::analysis
+
+template <>
+struct pierce::EnumNames<pierce::analysis::PointClass> {
+  static constexpr std::string_view what = "point class";
+  static constexpr NamedValue<analysis::PointClass> values[] = {{analysis::PointClass::outside, "outside"},
+                                                                {analysis::PointClass::inside, "inside"},
+                                                                {analysis::PointClass::on, "on"}};
+};
+
+inline std::string_view pierce::analysis::point_class_name(PointClass c) { return enum_name(c); }

@@ -34,6 +34,7 @@
 
 #include "pierce/analysis/csg.h"
 #include "pierce/analysis/progress.h"
+#include "pierce/enum_names.h"
 #include "pierce/kernel.h"
 
 namespace pierce::analysis {
@@ -43,8 +44,9 @@ inline constexpr std::size_t kEffectCount = 7;
 inline constexpr Effect kAllEffects[kEffectCount] = {Effect::first_hit,   Effect::thickness, Effect::transparency,
                                                       Effect::xray,        Effect::penetration, Effect::overlaps,
                                                       Effect::classification};
-std::string_view effect_name(Effect e);
-std::optional<Effect> parse_effect(std::string_view name);
+// Through the names table after the namespace (enum_names.h), as the scene files spell them.
+inline std::string_view effect_name(Effect e);
+inline std::optional<Effect> parse_effect(std::string_view name);
 // True for the effects that read partitions (xray, penetration, overlaps, classification).
 bool needs_partitions(Effect e);
 
@@ -144,3 +146,18 @@ EffectsResult run_effects(const Accel& accel, const std::vector<Ray>& rays, cons
                           const Progress& progress = {});
 
 }  // namespace pierce::analysis
+
+template <>
+struct pierce::EnumNames<pierce::analysis::Effect> {
+  static constexpr std::string_view what = "effect";
+  static constexpr NamedValue<analysis::Effect> values[] = {
+      {analysis::Effect::first_hit, "first_hit"}, {analysis::Effect::thickness, "thickness"},
+      {analysis::Effect::transparency, "transparency"}, {analysis::Effect::xray, "xray"},
+      {analysis::Effect::penetration, "penetration"}, {analysis::Effect::overlaps, "overlaps"},
+      {analysis::Effect::classification, "classification"}};
+};
+
+inline std::string_view pierce::analysis::effect_name(Effect e) { return enum_name(e); }
+inline std::optional<pierce::analysis::Effect> pierce::analysis::parse_effect(std::string_view name) {
+  return parse_enum<Effect>(name);
+}

@@ -5,6 +5,9 @@
 //
 // Relative paths (models, ray CSV files, outputs) are relative to the scene file's directory;
 // outputs may be redirected (`pierce run --out-dir`).
+//
+// Part of the CLI, not of pierce_core: the format (and its JSON parser) is the command's, while
+// what it configures, analysis::EffectsConfig, is core's.
 #include <optional>
 #include <string>
 #include <string_view>
@@ -13,7 +16,7 @@
 
 #include "pierce/analysis/effects.h"
 
-namespace pierce::analysis {
+namespace pierce::cli {
 
 struct CameraSpec {
   Vec3d center;              // centre of the image plane; rays start there and run along `direction`
@@ -27,13 +30,13 @@ struct EffectSceneSpec {
   std::string path;      // the scene file (for messages)
   std::string base_dir;  // its directory: relative paths resolve against it
   std::vector<std::string> models;  // resolved paths
-  std::vector<Material> materials;
+  std::vector<analysis::Material> materials;
   // Solid name (or "#id", or "*" for every solid not named otherwise) -> index into materials, in
   // file order (inline materials are appended to `materials`).
   std::vector<std::pair<std::string, std::size_t>> assignments;
   std::string rays;                  // a ray_source.h spec (CSV paths resolved), when not a camera
   std::optional<CameraSpec> camera;
-  EffectsConfig config;              // enabled effects, their parameters, kernel; materials unbound
+  analysis::EffectsConfig config;    // enabled effects, their parameters, kernel; materials unbound
   std::string csg;                   // classification.csg, bound in bind_effect_scene
   // Outputs, resolved against base_dir; empty = not requested.
   std::string rays_csv, intervals_csv, report_json;
@@ -51,7 +54,7 @@ void redirect_outputs(EffectSceneSpec& spec, const std::string& out_dir);
 
 // Binds material assignments and the classification expression to the loaded scene: the config
 // to run. Throws InputError listing unknown solid or material names.
-EffectsConfig bind_effect_scene(const EffectSceneSpec& spec, const Scene& scene);
+analysis::EffectsConfig bind_effect_scene(const EffectSceneSpec& spec, const Scene& scene);
 
 // The rays of a scene and, when they form an image (grid generator or camera), its layout:
 // ray index of the pixel at column i (left to right) and row j counted from the top.
@@ -70,4 +73,4 @@ struct SceneRays {
 SceneRays make_scene_rays(const EffectSceneSpec& spec, const Scene& scene);
 std::vector<Ray> camera_rays(const CameraSpec& cam);
 
-}  // namespace pierce::analysis
+}  // namespace pierce::cli

@@ -1,11 +1,7 @@
 #pragma once
-// Minimal image encoders for analysis output, without VTK or zlib: PNG with uncompressed (stored)
-// deflate blocks, and VTK XML ImageData (.vti, ASCII).
-#include <cstdint>
-#include <functional>
+// Image encoders for analysis output: PNG (through libspng) and VTK XML ImageData (.vti, ASCII).
 #include <span>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "pierce/vec3.h"
@@ -14,12 +10,9 @@ namespace pierce {
 
 // PNG bytes for a width x height image with `channels` samples per pixel (1 grey, 3 RGB, 4 RGBA)
 // of `bits` (8 or 16) each. `samples` holds width*height*channels values in [0, 1] (clamped; NaN
-// becomes 0), rows from the top, row-major. Throws std::invalid_argument on bad sizes.
+// becomes 0), rows from the top, row-major. Throws std::invalid_argument on bad sizes and
+// std::runtime_error if libspng fails.
 std::string encode_png(int width, int height, int channels, int bits, std::span<const double> samples);
-
-// CRC-32 (PNG, zlib polynomial) and Adler-32, exposed for tests.
-std::uint32_t crc32(std::span<const std::uint8_t> bytes, std::uint32_t crc = 0);
-std::uint32_t adler32(std::span<const std::uint8_t> bytes);
 
 // VTK XML ImageData: a width x height x 1 image, point data arrays of width*height values each
 // (x fastest, rows from the bottom as VTK counts them), with origin and spacing.

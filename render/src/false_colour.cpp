@@ -1,4 +1,4 @@
-#include "pierce/io/false_colour.h"
+#include "pierce/render/false_colour.h"
 
 #include <algorithm>
 #include <array>
@@ -9,7 +9,7 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include "pierce/error.h"
-#include "pierce/io/image_writer.h"
+#include "pierce/render/image_writer.h"
 #include "pierce/parallel_for_items.h"
 
 namespace pierce {
@@ -210,12 +210,6 @@ void draw_legend(const PictureFrame& fr, Canvas& canvas, ColourMap map, double l
   canvas.text(x0, bar_bottom + margin, label(lo), g);
 }
 
-constexpr std::pair<CostMetric, std::string_view> kCostMetricNames[] = {
-    {CostMetric::traversal_steps, "steps"},
-    {CostMetric::node_tests, "node-tests"},
-    {CostMetric::prim_tests, "prim-tests"},
-};
-
 std::uint64_t cost_of(const Counters& c, CostMetric m) {
   switch (m) {
     case CostMetric::node_tests: return c.node_tests;
@@ -273,18 +267,6 @@ FalseColourImage render_false_colour(const Accel& accel, const ElementField& fie
   for (const Worker& w : workers) img.pixels_hit += w.hits;
   draw_legend(fr, canvas, opts.map, lo, hi);
   return img;
-}
-
-std::string_view cost_metric_name(CostMetric m) {
-  for (const auto& [metric, name] : kCostMetricNames)
-    if (metric == m) return name;
-  return "?";
-}
-
-std::optional<CostMetric> parse_cost_metric(std::string_view name) {
-  for (const auto& [metric, n] : kCostMetricNames)
-    if (n == name) return metric;
-  return std::nullopt;
 }
 
 FalseColourImage render_cost_heatmap(const Accel& accel, KernelKind kernel, std::size_t max_hits, CostMetric metric,

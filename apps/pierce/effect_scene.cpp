@@ -1,4 +1,4 @@
-#include "pierce/analysis/effect_scene.h"
+#include "effect_scene.h"
 
 #include <nlohmann/json.hpp>
 
@@ -10,8 +10,11 @@
 
 #include "pierce/error.h"
 #include "pierce/io/ray_source.h"
+#include "pierce/solid_reference.h"
 
-namespace pierce::analysis {
+namespace pierce::cli {
+
+using namespace pierce::analysis;
 
 namespace {
 
@@ -146,11 +149,7 @@ CameraSpec read_camera(const Reader& r, const json& v, const std::string& where)
 void read_effect(const Reader& r, EffectSceneSpec& spec, const std::string& name, const json& params,
                  const std::string& where) {
   const std::optional<Effect> e = parse_effect(name);
-  if (!e) {
-    std::string list;
-    for (Effect x : kAllEffects) list += (list.empty() ? "" : ", ") + std::string(effect_name(x));
-    r.fail(where, "unknown effect '" + name + "' (expected " + list + ")");
-  }
+  if (!e) r.fail(where, "unknown effect '" + name + "' (expected " + enum_name_list<Effect>() + ")");
   EffectsConfig& cfg = spec.config;
   if (cfg.on(*e)) r.fail(where, "effect '" + name + "' requested twice");
   cfg.enable(*e);
@@ -342,16 +341,13 @@ EffectsConfig bind_effect_scene(const EffectSceneSpec& spec, const Scene& scene)
       fallback = material_of(mat);
       continue;
     }
-    bool found = false;
-    for (std::uint32_t g = 0; g < n; ++g) {
-      const bool by_id = solid.size() > 1 && solid[0] == '#' && solid.substr(1) == std::to_string(g);
-      if (scene.geometry(g).name == solid || by_id) {
-        cfg.solid_material[g] = material_of(mat);
-        named[g] = 1;
-        found = true;
-      }
+    // A name, #N or N, as everywhere solids are named (solid_reference.h).
+    const std::vector<std::uint32_t> found = find_solids(scene, solid);
+    for (const std::uint32_t g : found) {
+      cfg.solid_material[g] = material_of(mat);
+      named[g] = 1;
     }
-    if (!found) unknown += (unknown.empty() ? "'" : ", '") + solid + "'";
+    if (found.empty()) unknown += (unknown.empty() ? "'" : ", '") + solid + "'";
   }
   if (!unknown.empty()) {
     std::string known;
@@ -428,4 +424,4 @@ SceneRays make_scene_rays(const EffectSceneSpec& spec, const Scene& scene) {
   return out;
 }
 
-}  // namespace pierce::analysis
+}  // namespace pierce::cli
