@@ -5,6 +5,7 @@
 // kEmbreeBuildMaxCoord, or it failed), Pierce's own binned SAH builder and the collapse take over.
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <new>
 #include <vector>
@@ -21,11 +22,13 @@ namespace pierce {
 namespace {
 
 // The tree as Embree's builder makes it, in its thread-local allocators. Both kinds start with
-// the leaf's triangle count (0 for an inner node).
+// the leaf's triangle count (0 for an inner node). An inner node also gets its subtree's sizes in
+// the writer's first pass.
 struct BuildInner {
   std::uint32_t leaf_count;
   std::uint32_t child_count;
   void* child[kWideArity];
+  std::uint32_t nodes_below, blocks_below, triangles_below, depth_below;  // the subtree's, itself included
 };
 struct BuildLeaf {
   std::uint32_t leaf_count;
@@ -33,7 +36,7 @@ struct BuildLeaf {
 };
 
 void* create_node(RTCThreadLocalAllocator alloc, unsigned int children, void* /*user*/) {
-  return new (rtcThreadLocalAlloc(alloc, sizeof(BuildInner), 16)) BuildInner{0, children, {}};
+  return new (rtcThreadLocalAlloc(alloc, sizeof(BuildInner), 16)) BuildInner{0, children, {}, 0, 0, 0, 0};
 }
 void set_children(void* node, void** children, unsigned int count, void* /*user*/) {
   auto* n = static_cast<BuildInner*>(node);
@@ -50,18 +53,46 @@ void* create_leaf(RTCThreadLocalAllocator alloc, const RTCBuildPrimitive* prims,
 }
 std::uint32_t leaf_count(const void* p) { return *static_cast<const std::uint32_t*>(p); }
 
+// Subtrees of at least this many triangles are written in parallel, child by child.
+constexpr std::uint32_t kParallelTriangles = 8192;
+
 // A triangle the build takes: where it is in the scene.
 struct TriRef {
   std::uint32_t geom, prim;
 };
 
+// Writes Embree's tree in two passes: the first (serial, over the inner nodes only) sizes every
+// subtree and checks the tree's shape; the second writes each subtree into its preorder range of
+// nodes and blocks, big subtrees in parallel, so the layout does not depend on the schedule and the
+// fresh pages are faulted in by the threads that fill them.
 template <typename T>
 struct Writer {
   const Scene& scene;
   const std::vector<TriRef>& refs;
   WideBvh<T>& out;
   std::vector<std::uint8_t> seen;  // each primitive must be in exactly one leaf
-  bool ok = true;
+
+  // False where the tree is not one Pierce can take (a null child, an inner node without children).
+  bool size(void* p) {
+    if (leaf_count(p) > 0) return true;
+    auto* n = static_cast<BuildInner*>(p);
+    if (n->child_count < 1) return false;
+    n->nodes_below = 1, n->blocks_below = 0, n->triangles_below = 0, n->depth_below = 1;
+    for (std::uint32_t s = 0; s < n->child_count; ++s) {
+      void* c = n->child[s];
+      if (c == nullptr || !size(c)) return false;
+      if (const std::uint32_t k = leaf_count(c); k > 0) {
+        n->blocks_below += detail::leaf_blocks_for(k);
+        n->triangles_below += k;
+      } else {
+        const auto* ci = static_cast<const BuildInner*>(c);
+        n->nodes_below += ci->nodes_below, n->blocks_below += ci->blocks_below;
+        n->triangles_below += ci->triangles_below;
+        n->depth_below = std::max(n->depth_below, ci->depth_below + 1);
+      }
+    }
+    return true;
+  }
 
   Triangle<T> triangle(std::uint32_t id) const {
     const TriRef r = refs[id];
@@ -70,50 +101,74 @@ struct Writer {
     return {Vec3<T>(geo.vertices[t[0]]), Vec3<T>(geo.vertices[t[1]]), Vec3<T>(geo.vertices[t[2]]), r.geom, r.prim};
   }
 
-  // Writes the subtree at `p` (the node before its children, preorder) and returns its reference;
-  // `box` gets its exact bounds.
-  NodeRef write(const void* p, std::uint32_t level, BBox<T>& box) {
+  // Every id in range and seen once (atomically: leaves are written concurrently).
+  bool claim(const BuildLeaf& leaf) {
+    for (std::uint32_t i = 0; i < leaf.leaf_count; ++i) {
+      const std::uint32_t id = leaf.id[i];
+      if (id >= refs.size() || std::atomic_ref<std::uint8_t>(seen[id]).exchange(1) != 0) return false;
+    }
+    return true;
+  }
+
+  // Writes the subtree at `p`: an inner node at out.nodes[node] with its descendants after it, its
+  // leaves' blocks from out.blocks[block] on. Returns its reference; `box` gets its exact bounds.
+  NodeRef write(const void* p, std::uint32_t node, std::uint32_t block, BBox<T>& box, std::atomic<bool>& ok) {
     if (const std::uint32_t n = leaf_count(p); n > 0) {
       const auto* leaf = static_cast<const BuildLeaf*>(p);
-      for (std::uint32_t i = 0; i < n; ++i) {
-        const std::uint32_t id = leaf->id[i];
-        if (id >= refs.size() || seen[id]) {
-          ok = false;
-          return make_leaf_ref(0, 1);
-        }
-        seen[id] = 1;
-      }
-      const std::uint32_t nblocks = detail::leaf_blocks_for(n);
-      const auto first = std::uint32_t(out.blocks.size());
-      detail::check_block_count(std::size_t(first) + nblocks);
-      out.blocks.resize(first + nblocks);
-      out.triangles += n;
-      return detail::write_leaf(out, first, n, [&](std::size_t k) { return triangle(leaf->id[k]); }, box);
+      if (!claim(*leaf)) ok = false;
+      return detail::write_leaf(out, block, n, [&](std::size_t k) { return triangle(leaf->id[k]); }, box);
     }
     const auto* inner = static_cast<const BuildInner*>(p);
     const int nk = int(inner->child_count);
-    if (nk < 1) {
-      ok = false;
-      return make_leaf_ref(0, 1);
-    }
-    out.depth = std::max(out.depth, level + 1);
-    const auto index = std::uint32_t(out.nodes.size());
-    out.nodes.emplace_back();
     std::array<BBox<T>, kWideArity> boxes{};
     std::array<NodeRef, kWideArity> refs_out{};
-    for (int s = 0; s < nk && ok; ++s) {
-      if (inner->child[s] == nullptr) {
-        ok = false;
-        break;
+    std::array<std::uint32_t, kWideArity> child_node{}, child_block{};
+    std::uint32_t next_node = node + 1, next_block = block;
+    for (int s = 0; s < nk; ++s) {
+      child_node[s] = next_node, child_block[s] = next_block;
+      const void* c = inner->child[s];
+      if (const std::uint32_t k = leaf_count(c); k > 0) {
+        next_block += detail::leaf_blocks_for(k);
+      } else {
+        next_node += static_cast<const BuildInner*>(c)->nodes_below;
+        next_block += static_cast<const BuildInner*>(c)->blocks_below;
       }
-      refs_out[s] = write(inner->child[s], level + 1, boxes[s]);
+    }
+    auto child = [&](int s) { refs_out[s] = write(inner->child[s], child_node[s], child_block[s], boxes[s], ok); };
+    if (inner->triangles_below >= kParallelTriangles) {
+      tbb::parallel_for(0, nk, child);
+    } else {
+      for (int s = 0; s < nk; ++s) child(s);
+    }
+    WideNode<T>& w = out.nodes[node];
+    detail::set_wide_boxes(w, boxes.data(), nk);
+    for (int s = 0; s < nk; ++s) {
+      w.child[s] = refs_out[s];
       box.extend(boxes[s]);
     }
-    if (!ok) return make_leaf_ref(0, 1);
-    WideNode<T>& w = out.nodes[index];  // the vector may have grown: looked up again
-    detail::set_wide_boxes(w, boxes.data(), nk);
-    for (int s = 0; s < nk; ++s) w.child[s] = refs_out[s];
-    return index;
+    return node;
+  }
+
+  // The whole tree from Embree's root; false if Embree's tree cannot be taken as it is.
+  bool write_all(void* root) {
+    if (!size(root)) return false;
+    std::uint32_t nodes = 0, blocks = 0, triangles = 0;
+    if (const std::uint32_t k = leaf_count(root); k > 0) {
+      blocks = detail::leaf_blocks_for(k), triangles = k;
+    } else {
+      const auto* r = static_cast<const BuildInner*>(root);
+      nodes = r->nodes_below, blocks = r->blocks_below, triangles = r->triangles_below, out.depth = r->depth_below;
+    }
+    if (triangles != refs.size()) return false;
+    detail::check_block_count(blocks);
+    out.nodes.resize(nodes);  // untouched until written (HugePageAllocator::construct)
+    out.blocks.resize(blocks);
+    std::atomic<bool> ok{true};
+    BBox<T> box;
+    out.root = write(root, 0, 0, box, ok);
+    out.bounds = box;
+    out.triangles = triangles;
+    return ok;
   }
 };
 
@@ -170,17 +225,12 @@ bool build_with_embree(const Scene& scene, const BvhBuildOptions& opts, WideBvh<
   args.setNodeChildren = set_children;
   args.setNodeBounds = set_bounds;
   args.createLeaf = create_leaf;
-  const void* root = rtcBuildBVH(&args);
+  void* root = rtcBuildBVH(&args);
   bool ok = root != nullptr && rtcGetDeviceError(device) == RTC_ERROR_NONE;
   if (ok) {
     std::vector<RTCBuildPrimitive>().swap(prims);  // Embree is done with them
-    out.nodes.reserve(refs.size() / 16 + 1);
-    out.blocks.reserve(refs.size() / 4 + 1);
     Writer<T> w{scene, refs, out, std::vector<std::uint8_t>(refs.size(), 0)};
-    BBox<T> box;
-    out.root = w.write(root, 0, box);
-    out.bounds = box;
-    ok = w.ok && out.triangles == refs.size();
+    ok = w.write_all(root);
   }
   rtcReleaseBVH(bvh);
   return ok;

@@ -4,12 +4,14 @@
 // (madvise(MADV_HUGEPAGE); Debian's default THP mode is "madvise", so nothing else gets them).
 // A ray touches a few nodes and blocks spread over the whole structure; with 4 KB pages most of
 // those accesses also miss the TLB. Embree advises its BVH memory the same way. Where huge pages
-// are off the advice is ignored and nothing changes.
+// are off the advice is ignored and nothing changes. Elements are default-initialised (see
+// construct()): a resized vector of trivial elements holds indeterminate values until written.
 #include <sys/mman.h>
 
 #include <cstddef>
 #include <cstdlib>
 #include <new>
+#include <utility>
 #include <vector>
 
 namespace pierce {
@@ -36,6 +38,17 @@ struct HugePageAllocator {
     if (n * sizeof(T) < kHugePageBytes) ::operator delete(p, std::align_val_t(alignof(T)));
     else std::free(p);
   }
+  // Default-initialises where a vector would value-initialise: a resize of trivial elements then
+  // leaves the pages untouched, for the parallel writer to fault in (and zero) where it writes.
+  template <class U>
+  void construct(U* p) noexcept(noexcept(::new (static_cast<void*>(p)) U)) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+
   template <class U>
   friend constexpr bool operator==(const HugePageAllocator&, const HugePageAllocator<U>&) noexcept {
     return true;

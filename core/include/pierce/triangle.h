@@ -55,14 +55,16 @@ inline bool lex_less(const Vec3<T>& a, const Vec3<T>& b) {
 // the same three points (a face shared by touching solids, a duplicated face, either winding)
 // then get bit-identical det and t, since reordering or reversing the corners only permutes the
 // terms and negates them exactly. A property of the triangle, not of the ray: BVH leaves store it.
+// (Trivial, so the wide BVH's leaf blocks can be allocated without being written; sum_order()
+// makes every value.)
 struct SumOrder {
-  std::uint8_t o[3] = {0, 1, 2};
+  std::uint8_t o[3];
 };
 
 template <typename T>
 inline SumOrder sum_order(const Vec3<T>& p0, const Vec3<T>& p1, const Vec3<T>& p2) {
   const Vec3<T>* p[3] = {&p0, &p1, &p2};
-  SumOrder s;
+  SumOrder s{{0, 1, 2}};
   std::uint8_t* o = s.o;
   if (detail::lex_less(*p[o[1]], *p[o[0]])) std::swap(o[0], o[1]);
   if (detail::lex_less(*p[o[2]], *p[o[1]])) std::swap(o[1], o[2]);

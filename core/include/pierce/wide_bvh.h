@@ -61,7 +61,9 @@ template <typename T>
 struct alignas(64) TriBlock {
   // What the SIMD test reads comes first and together (the lane mask, then the corners); the ids
   // are read only for the few lanes that hit.
-  std::uint32_t valid = 0;  // bit l: lane l holds a triangle (padding lanes are masked, never repeated)
+  // Trivial (no member initialisers), so blocks can be allocated untouched and first written by
+  // the thread that fills them; TriBlock<T>{} is all zeros.
+  std::uint32_t valid;  // bit l: lane l holds a triangle (padding lanes are masked, never repeated)
   SumOrder sum[kBlockLanes];
   alignas(32) T v[3][3][kBlockLanes];  // v[corner][axis][lane], the input corners in input order
   std::uint32_t geom[kBlockLanes];
