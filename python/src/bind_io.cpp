@@ -5,6 +5,7 @@
 #include "pierce/generators.h"
 #include "pierce/io/mesh_io.h"
 #ifdef PIERCE_PY_WITH_CAD
+#include "pierce/io/cad_surfaces.h"
 #include "pierce/io/model_io.h"
 #endif
 #include "pierce/io/ray_source.h"
@@ -62,6 +63,17 @@ void bind_io(pyb::module_& m) {
         }
 #endif
         for (const Geometry& g : scratch.geometries()) s.scene.add_mesh(g.vertices, g.triangles, g.name, g.source);
+#ifdef PIERCE_PY_WITH_CAD
+        bool any_cad = false;
+        s.cad.resize(first);
+        for (const LoadedFile& f : files)
+          for (std::uint32_t k = 0; k < f.geometry_count; ++k) {
+            s.cad.push_back(k < f.cad.size() ? f.cad[k] : CadLink{});
+            any_cad = any_cad || !s.cad.back().empty();
+          }
+        for (const CadLink& l : s.cad) any_cad = any_cad || !l.empty();
+        if (any_cad) s.exact = std::make_shared<CadSurfaces>(s.cad);
+#endif
         s.invalidate_accel();
         return info;
       },
