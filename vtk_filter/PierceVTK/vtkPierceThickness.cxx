@@ -87,6 +87,7 @@ int vtkPierceThickness::RequestData(
   settings.cone_aggregate = this->ConeAggregate;
   pierce::analysis::ThicknessOptions options = pierce_vtk::ToThicknessOptions(settings);
   const bool perCell = this->SampleAt == CELLS;
+  options.tessellation_flags = pierce_vtk::TessellationFlags(surfaces);
   pierce_vtk::VertexOwners owners;
   if (surfaces.distributed)
   {

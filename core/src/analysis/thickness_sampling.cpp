@@ -64,6 +64,10 @@ std::span<const std::uint8_t> folded_flags(const ThicknessOptions& opts, std::ui
 
 namespace {
 
+// CAD vertices on an edge: how far (a fraction of the distance to the triangle's centre) each
+// face's sample is moved into the face.
+constexpr double kEdgeInset = 1e-6;
+
 bool closed_mesh(const Geometry& geo, const std::vector<std::uint32_t>& weld) {
   const EdgeStats e = edge_stats(geo, weld);
   return e.boundary == 0 && e.non_manifold == 0 && !geo.triangles.empty();
@@ -181,9 +185,18 @@ SampleSet build_samples(const Scene& scene, const ThicknessOptions& opts, Thickn
           }
           res.status[out] = ThicknessStatus::ok;
           for (const auto& [f, tc] : per_face) {
-            const auto [b1, b2] = corner_bary(tc.second);
-            Sample s = cad_sample(opts, g, out, tc.first, b1, b2, geo.vertices[v], normals[v] * -1.0, face_folded[f],
-                                  closed);
+            auto [b1, b2] = corner_bary(tc.second);
+            Vec3d m = geo.vertices[v];
+            if (per_face.size() > 1) {
+              // On an edge: the sample of face f is its limit from inside the face, a hair
+              // (kEdgeInset of the triangle) off the vertex toward the triangle's centre, so its
+              // ray does not run along the neighbouring face.
+              const Tri& tri = geo.triangles[tc.first];
+              const Vec3d c = (geo.vertices[tri[0]] + geo.vertices[tri[1]] + geo.vertices[tri[2]]) * (1.0 / 3.0);
+              b1 += kEdgeInset * (1.0 / 3.0 - b1), b2 += kEdgeInset * (1.0 / 3.0 - b2);
+              m = m + (c - m) * kEdgeInset;
+            }
+            Sample s = cad_sample(opts, g, out, tc.first, b1, b2, m, normals[v] * -1.0, face_folded[f], closed);
             if (!s.exact && normals[v] == Vec3d{}) s.preset = ThicknessStatus::no_normal;
             s.exclude_begin = std::uint32_t(set.exclude.size());
             if (opts.method == ThicknessMethod::sphere)

@@ -19,8 +19,9 @@
 // CAD input (ThicknessOptions::exact covers the geometry, see exact_surface.h): every sample
 // starts on the exact B-rep face, at the projection of the mesh sample onto the face of its
 // triangle, and is traced along the face's exact inward normal there; a vertex on an edge
-// between faces is sampled once per face and keeps the smaller thickness (brep_faces says how
-// many). The exit found on the mesh is refined on the exact face of the triangle it crosses
+// between faces is sampled once per face (each sample a millionth of its triangle into its face,
+// so that its ray does not run along the neighbouring face) and keeps the smaller thickness
+// (brep_faces says how many). The exit found on the mesh is refined on the exact face of the triangle it crosses
 // (Newton steps from the triangle's UV), so ray and cone rays measure the B-rep, not the
 // tessellation. A sample that starts on a folded triangle, first meets or leaves through one,
 // finds no exit in a closed solid (max_distance infinite), or whose projection or refinement
