@@ -406,7 +406,8 @@ std::function<int()> register_thickness(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--at", o->at,
                   "Thickness at the points of this CSV file (header solid,x,y,z[,nx,ny,nz]; solid by name or id), "
-                  "each projected onto its solid's boundary; -o .csv/.json gets one row per input row, in order");
+                  "each projected onto its solid's boundary (--per does not apply); -o .csv/.json gets one row per input "
+                  "row, in order (id = input row from 0)");
   cmd->add_option("--solid", o->solids, "Only these solids (name or id; repeatable); the others still bound rays");
   cmd->add_option("--kernel", o->kernel, "Exact kernel to trace with (all give the same result)")->capture_default_str();
   cmd->add_option("--origin-offsets", o->origin_offsets,
