@@ -1,11 +1,13 @@
 #include "step_assembly.h"
 
+#include <BRepAlgoAPI_Cut.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepFilletAPI_MakeFillet.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <BRepTools.hxx>
@@ -24,6 +26,7 @@
 #include <XCAFApp_Application.hxx>
 #include <XCAFDoc_DocumentTool.hxx>
 #include <XCAFDoc_ShapeTool.hxx>
+#include <gp_Ax2.hxx>
 #include <gp_Trsf.hxx>
 
 #include <cmath>
@@ -105,12 +108,15 @@ TopoDS_Shape hollow_torus() {
 }
 
 TopoDS_Shape thin_blended_plate() {
-  const TopoDS_Shape box = BRepPrimAPI_MakeBox(20, 20, 0.2).Shape();
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(30, 30, 0.3).Shape();
   BRepFilletAPI_MakeFillet f(box);
-  for (TopExp_Explorer ex(box, TopAbs_EDGE); ex.More(); ex.Next()) f.Add(0.08, TopoDS::Edge(ex.Current()));
+  for (TopExp_Explorer ex(box, TopAbs_EDGE); ex.More(); ex.Next()) f.Add(0.01, TopoDS::Edge(ex.Current()));
   f.Build();
   if (!f.IsDone()) throw std::runtime_error("thin_blended_plate: fillet failed");
-  return f.Shape();
+  const TopoDS_Shape hole = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(15, 15, -0.3), gp_Dir(0, 0, 1)), 3.75, 0.9).Shape();
+  BRepAlgoAPI_Cut cut(f.Shape(), hole);
+  if (!cut.IsDone()) throw std::runtime_error("thin_blended_plate: hole failed");
+  return cut.Shape();
 }
 
 TopoDS_Shape with_folded_triangle(const TopoDS_Shape& shape, double deflection) {

@@ -14,7 +14,10 @@
 //   filleted_box    box [0,10] x [0,8] x [0,6], all twelve edges filleted with radius 1 (the
 //                   blends meet in spherical corners);
 //   hollow_torus    a tube: torus of major radius 5, outer minor radius 1, inner 0.8 (wall 0.2);
-//   thin_blended_plate  a 20 x 20 x 0.2 sheet whose edges are filleted with radius 0.08.
+//   thin_blended_plate  a 30 x 30 x 0.3 sheet whose edges are filleted with radius 0.01, with a
+//                   through hole of radius 3.75 at its centre (sharp edges): on its default
+//                   tessellation the bare mesh reads false thin spots at the blends (0.07 for
+//                   the 0.3 sheet).
 #include <TopoDS_Shape.hxx>
 
 #include <string>
