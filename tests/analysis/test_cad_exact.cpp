@@ -239,6 +239,26 @@ TEST(CadExact, RefinementIsWhatMakesItExact) {
   EXPECT_TRUE(mesh.brep_faces.empty());
 }
 
+// Cone and sphere on CAD input: the cone's rays are refined on the B-rep (none shorter than the
+// 0.2 wall), the sphere's ball lives on the mesh (within the deflection of the wall).
+TEST(CadExact, ConeAndSphereOnTheTorusWall) {
+  const auto l = load(test_models::hollow_torus(), "torus_methods");
+  const Accel accel(l->scene);
+  const double deflection = l->files[0].linear_deflection;
+  ThicknessOptions o;
+  o.per = SampleAt::face;
+  o.exact = l->exact.get();
+  o.method = ThicknessMethod::cone;
+  const ThicknessResult cone = compute_thickness(accel, o);
+  EXPECT_EQ(cone.solids[0].valid, cone.size());
+  EXPECT_GE(cone.solids[0].summary.min, 0.2 - 1e-9);
+  o.method = ThicknessMethod::sphere;
+  const ThicknessResult sphere = compute_thickness(accel, o);
+  EXPECT_EQ(sphere.solids[0].valid, sphere.size());
+  EXPECT_NEAR(sphere.solids[0].summary.min, 0.2, 2 * deflection);
+  EXPECT_NEAR(sphere.solids[0].summary.max, 0.2, 2 * deflection);
+}
+
 TEST(CadTessellation, FoldIsFoundAndRemeshed) {
   const TopoDS_Shape folded = test_models::with_folded_triangle(test_models::filleted_box(), 0.01);
   const auto l = load(folded, "fold_remeshed", TessellationOptions{0.05, 15, 3});

@@ -189,13 +189,16 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
                                                      s.exclude_end - s.exclude_begin);
         // Shrinking ball (Ma et al. 2012): the ball touching the point with its centre on the
         // inward normal shrinks to pass through the nearest surface point inside it, until
-        // none is left. It starts at half the ray thickness, which bounds it.
-        double r = 0.5 * ray.t;
+        // none is left. It starts at half the ray thickness, which bounds it. CAD samples: the
+        // ball lives on the mesh, so it touches the mesh sample (along the exact normal); the
+        // refined ray from the B-rep point, plus the distance between the two, bounds it.
+        const Vec3d at = s.cad ? s.mesh_point : s.point;
+        double r = 0.5 * (s.cad ? ray.t + length(s.mesh_point - s.point) : ray.t);
         for (int iter = 0; iter < opts.sphere_max_iterations && r > tie; ++iter) {
-          const Vec3d c = s.point + s.inward * r;
+          const Vec3d c = at + s.inward * r;
           const ClosestPoint cp = closest_point(bvh, c, r * r, exclude, w.stack);
           if (!cp.found() || cp.dist2 >= r * r * (1.0 - 1e-12)) break;
-          const Vec3d d = cp.point - s.point;
+          const Vec3d d = cp.point - at;
           const double denom = 2.0 * dot(s.inward, d);
           if (!(denom > 0)) break;
           const double rn = dot(d, d) / denom;

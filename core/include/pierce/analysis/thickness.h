@@ -23,7 +23,8 @@
 // so that its ray does not run along the neighbouring face) and keeps the smaller thickness
 // (brep_faces says how many). The exit found on the mesh is refined on the exact face of the triangle it crosses
 // (Newton steps from the triangle's UV), so ray and cone rays measure the B-rep, not the
-// tessellation. A sample that starts on a folded triangle, first meets or leaves through one,
+// tessellation (the sphere method's ball is still shrunk against the mesh, from the mesh sample
+// along the exact normal). A sample that starts on a folded triangle, first meets or leaves through one,
 // finds no exit in a closed solid (max_distance infinite), or whose projection or refinement
 // does not converge, gets status `tessellation` and no thickness: it is an artefact of the mesh,
 // counted per solid and left out of the statistics. Meshes (STL, OBJ, OFF, PLY) are measured as
