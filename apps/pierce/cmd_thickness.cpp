@@ -228,6 +228,7 @@ void write_json(std::FILE* f, const Scene& scene, const ThicknessResult& r, cons
     e["thickness"] = std::isnan(r.thickness[i]) ? nlohmann::ordered_json() : nlohmann::ordered_json(r.thickness[i]);
     e["thin"] = bool(r.thin[i]);
     e["status"] = analysis::status_name(r.status[i]);
+    if (!r.brep_faces.empty()) e["brep_faces"] = r.brep_faces[i];  // CAD: faces sampled, smallest kept
     el.push_back(std::move(e));
   }
   const std::string text = j.dump(1);
@@ -256,6 +257,7 @@ void write_vtp_result(std::FILE* f, const Scene& scene, const ThicknessResult& r
   target.emplace_back("Thickness", r.thickness);
   target.emplace_back("Thin", r.thin);
   target.emplace_back("Status", std::move(status));
+  if (!r.brep_faces.empty()) target.emplace_back("BrepFaces", r.brep_faces);  // CAD: faces sampled per element
   d.point_data.emplace_back("SolidId", std::move(point_solid));
   d.cell_data.emplace_back("SolidId", std::move(cell_solid));
   if (!write_vtp(f, d)) throw std::runtime_error("write error");

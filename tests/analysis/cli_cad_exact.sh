@@ -48,6 +48,21 @@ run "thickness sheet" "$PIERCE" thickness "$SHEET" --per face -o "$WORK/s.csv"
 head -n 1 "$WORK/s.csv" | grep -qx "id,solid,element,x,y,z,thickness,thin,status,name" || fail "thickness csv header"
 grep -q "sampled on the exact B-rep" "$WORK/stdout" || fail "thickness: says it sampled the B-rep"
 
+# Per vertex: a vertex on an edge between B-rep faces is sampled per face, the smallest kept, and
+# says so (JSON brep_faces per element, edge_samples per solid; VTP array BrepFaces).
+run "thickness sheet per vertex" "$PIERCE" thickness "$SHEET" -o "$WORK/v.json"
+grep -q "vertices on B-rep edges show the smaller of their per-face samples" "$WORK/stdout" ||
+  fail "thickness per vertex: says edge vertices show the smaller sample"
+$PY - "$WORK/v.json" <<'PYEOF' || fail "per-vertex json brep_faces"
+import json, sys
+j = json.load(open(sys.argv[1]))
+e, s = j["elements"], j["solids"][0]
+assert s["edge_samples"] == sum(x["brep_faces"] >= 2 for x in e) > 0, s
+assert all(abs(x["thickness"] - 0.5) < 1e-9 for x in e), [x for x in e if abs(x["thickness"] - 0.5) >= 1e-9]
+PYEOF
+run "thickness sheet vtp" "$PIERCE" thickness "$SHEET" -o "$WORK/v.vtp"
+grep -q 'Name="BrepFaces"' "$WORK/v.vtp" || fail "vtp: BrepFaces array"
+
 # --at: points (header, optional normals) -> one row per input row, in order, id = input row.
 cat >"$WORK/pts.csv" <<'CSV'
 solid,x,y,z,nx,ny,nz
