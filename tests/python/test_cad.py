@@ -59,6 +59,10 @@ class CadThicknessTest(unittest.TestCase):
         self.assertEqual(info[0]["tessellation"][0]["folded_found"], 1)
         self.assertEqual(info[0]["tessellation"][0]["folded"], 0)
         self.assertEqual(pierce.thickness(s2, per="face").solids[0].tessellation, 0)
+        # pierce.load passes the option on and keeps the report.
+        s3 = pierce.load(self.folded, linear_deflection=0.05, fold_remesh_rounds=0)
+        t = s3.load_info[0]["tessellation"][0]
+        self.assertEqual((t["folded"], t["folded_found"], t["remesh_rounds"], t["brep_faces"]), (1, 1, 0, 26))
 
     def test_thickness_at_points(self):
         s = pierce.Scene()
