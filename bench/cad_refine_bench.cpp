@@ -106,7 +106,7 @@ int run(int argc, char** argv) {
         if (!p) continue;
         // A refinement on the start face itself (a Newton solve of the same size as an exit's).
         const auto x = exact->intersect(0, k, 1.0 / 3.0, 1.0 / 3.0, p->point + p->normal * 1e-3, p->normal * -1.0);
-        acc += x ? *x : 0.0;
+        acc += x ? x->t : 0.0;
       }
       sink = sink + acc;
     });

@@ -195,6 +195,46 @@ TEST(CadExact, ThinBlendedPlateHasNoFalseThinSpot) {
   EXPECT_NEAR(exact.solids[0].summary.min, 0.3, 1e-6 * 43);
 }
 
+// A B-spline side meeting planar caps at acute rims: face samples there graze the side (where
+// Newton or the mesh give no answer, the B-rep is intersected directly); vertex samples on the
+// acute rims are taken along the mean of the faces' normals (each face's own would leave at once).
+TEST(CadExact, LoftFaceSamplesAreBrepTrue) {
+  expect_b_rep_true(test_models::lofted_solid(), "loft_face", SampleAt::face, 0.0);
+}
+
+TEST(CadExact, LoftVertexSamplesAreBrepTrue) {
+  expect_b_rep_true(test_models::lofted_solid(), "loft_vertex", SampleAt::vertex, 0.0);
+}
+
+// The B-rep fallback: with the fold's flag withheld, rays that meet the upside-down triangle
+// find no exit on the mesh; the exact intersection gives their B-rep value instead.
+TEST(CadExact, NoExitOnTheMeshFallsBackToTheBrep) {
+  const TopoDS_Shape folded = test_models::with_folded_triangle(test_models::filleted_box(), 0.01);
+  const auto l = load(folded, "fold_unflagged", TessellationOptions{0.05, 15, 0});
+  std::vector<CadLink> links = l->files[0].cad;
+  ASSERT_EQ(links[0].check.folded, 1u);
+  for (auto& f : links[0].flags) f = 0;
+  const CadSurfaces unflagged(links);
+  ThicknessOptions o;
+  o.per = SampleAt::face;
+  o.exact = &unflagged;
+  const Accel accel(l->scene);
+  const ThicknessResult r = compute_thickness(accel, o);
+  ExactReference ref(folded, diagonal(folded));
+  const Comparison c = compare(r, ref, 1e-6 * diagonal(folded));
+  EXPECT_EQ(c.tessellation, 0u);
+  EXPECT_EQ(c.compared, r.size());
+  // The mesh alone has samples without exit here: the fallback answered them.
+  ThicknessOptions mesh_only;
+  mesh_only.per = SampleAt::face;
+  EXPECT_GT(compute_thickness(accel, mesh_only).solids[0].no_exit, 0u);
+  // first_crossing itself: from outside the box along +x, the first crossing is its face x = 0.
+  const auto t = unflagged.first_crossing(0, {-2, 4, 3}, {1, 0, 0}, 0.0);
+  ASSERT_TRUE(t.has_value());
+  EXPECT_NEAR(*t, 2.0, 1e-9);
+  EXPECT_FALSE(unflagged.first_crossing(0, {-2, 4, 3}, {-1, 0, 0}, 0.0).has_value());
+}
+
 // On the B-rep, the sheet's wall is exactly 0.5 across its flat legs and the bend: face samples
 // on the big faces (not the end caps, whose normals run along the sheet) read 0.5.
 TEST(CadExact, BentSheetWallIsHalfAMillimetreEverywhere) {

@@ -6,6 +6,7 @@
 #include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepFilletAPI_MakeFillet.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
+#include <BRepOffsetAPI_ThruSections.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakePrism.hxx>
@@ -14,6 +15,7 @@
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <GC_MakeArcOfCircle.hxx>
+#include <GC_MakeCircle.hxx>
 #include <GC_MakeSegment.hxx>
 #include <Poly_Triangulation.hxx>
 #include <TopExp_Explorer.hxx>
@@ -117,6 +119,18 @@ TopoDS_Shape thin_blended_plate() {
   BRepAlgoAPI_Cut cut(f.Shape(), hole);
   if (!cut.IsDone()) throw std::runtime_error("thin_blended_plate: hole failed");
   return cut.Shape();
+}
+
+TopoDS_Shape lofted_solid() {
+  BRepOffsetAPI_ThruSections loft(true, false);
+  const double r[3] = {5, 3, 4}, x[3] = {0, 1, 0}, y[3] = {0, 0, 1};
+  for (int i = 0; i < 3; ++i) {
+    const gp_Ax2 ax(gp_Pnt(x[i], y[i], 10.0 * i), gp_Dir(0, 0, 1));
+    loft.AddWire(BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(GC_MakeCircle(ax, r[i]).Value()).Edge()).Wire());
+  }
+  loft.Build();
+  if (!loft.IsDone()) throw std::runtime_error("lofted_solid: loft failed");
+  return loft.Shape();
 }
 
 TopoDS_Shape with_folded_triangle(const TopoDS_Shape& shape, double deflection) {

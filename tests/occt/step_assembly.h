@@ -17,7 +17,9 @@
 //   thin_blended_plate  a 30 x 30 x 0.3 sheet whose edges are filleted with radius 0.01, with a
 //                   through hole of radius 3.75 at its centre (sharp edges): on its default
 //                   tessellation the bare mesh reads false thin spots at the blends (0.07 for
-//                   the 0.3 sheet).
+//                   the 0.3 sheet);
+//   lofted_solid    a solid loft (B-spline side, planar caps) through circles of radius 5 at
+//                   z = 0, 3 at (1, 0, 10) and 4 at (0, 1, 20): acute rims at both caps.
 #include <TopoDS_Shape.hxx>
 
 #include <string>
@@ -31,6 +33,7 @@ TopoDS_Shape bent_sheet();
 TopoDS_Shape filleted_box();
 TopoDS_Shape hollow_torus();
 TopoDS_Shape thin_blended_plate();
+TopoDS_Shape lofted_solid();
 
 // `shape` meshed with `deflection` and one triangle of its most finely meshed face turned
 // upside down (a fold the loader must find); the triangulation is kept in the shape.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 #include "pierce/analysis/bvh_query.h"
@@ -100,6 +101,7 @@ Sample cad_sample(const ThicknessOptions& opts, std::uint32_t g, std::uint32_t o
     if (const auto p = opts.exact->project(g, prim, b1, b2, m)) {
       s.point = p->point;
       s.inward = p->normal * -1.0;
+      if (p->normal == Vec3d{}) s.preset = ThicknessStatus::no_normal;  // a singular point
     } else {
       s.preset = ThicknessStatus::tessellation;
     }
@@ -184,27 +186,88 @@ SampleSet build_samples(const Scene& scene, const ThicknessOptions& opts, Thickn
             continue;
           }
           res.status[out] = ThicknessStatus::ok;
+          auto add = [&](Sample smp) {
+            smp.exclude_begin = std::uint32_t(set.exclude.size());
+            if (opts.method == ThicknessMethod::sphere)
+              set.exclude.insert(set.exclude.end(), around[v].begin(), around[v].end());
+            smp.exclude_end = std::uint32_t(set.exclude.size());
+            set.samples.push_back(smp);
+          };
+          const bool exact = opts.exact && opts.exact->covers(g);
+          bool any_folded = false;
+          for (const auto& [f, fo] : face_folded) any_folded = any_folded || fo;
+          if (!exact) {  // flags only: the mesh normal, once
+            Sample smp = cad_sample(opts, g, out, per_face.begin()->second.first, 0, 0, geo.vertices[v],
+                                    normals[v] * -1.0, any_folded, closed);
+            if (normals[v] == Vec3d{}) smp.preset = ThicknessStatus::no_normal;
+            add(smp);
+            continue;
+          }
+          // Each face's exact normal at the vertex. A face's sample is taken where its inward
+          // normal enters the material past every other face through the vertex (a convex edge
+          // of 90 degrees or more, a concave or tangent one); at an acute edge it would leave at
+          // once through the neighbour (a knife edge, no wall to measure), so it is not taken.
+          struct AtFace {
+            std::uint32_t face, tri;
+            int corner;
+            std::optional<SurfacePoint> at;
+          };
+          std::vector<AtFace> faces;
           for (const auto& [f, tc] : per_face) {
-            auto [b1, b2] = corner_bary(tc.second);
+            const auto [b1, b2] = corner_bary(tc.second);
+            faces.push_back({f, tc.first, tc.second, opts.exact->project(g, tc.first, b1, b2, geo.vertices[v])});
+          }
+          std::size_t taken = 0, projected = 0;
+          Vec3d mean{};
+          for (const AtFace& af : faces) {
+            if (!af.at) continue;
+            ++projected;
+            if (af.at->normal == Vec3d{}) continue;  // singular point of this face (a cone's apex)
+            mean = mean + af.at->normal;
+            // Leaving through `other`: the edge is convex there (other's triangle bends away
+            // below this face's tangent plane) and the ray heads out of other's side.
+            bool enters = true;
+            for (const AtFace& other : faces) {
+              if (&other == &af || !other.at || !(dot(af.at->normal, other.at->normal) < -1e-9)) continue;
+              const Tri& ot = geo.triangles[other.tri];
+              const Vec3d oc = (geo.vertices[ot[0]] + geo.vertices[ot[1]] + geo.vertices[ot[2]]) * (1.0 / 3.0);
+              if (dot(oc - geo.vertices[v], af.at->normal) < 0) enters = false;
+            }
+            if (!enters) continue;
+            auto [b1, b2] = corner_bary(af.corner);
             Vec3d m = geo.vertices[v];
-            if (per_face.size() > 1) {
+            if (faces.size() > 1) {
               // On an edge: the sample of face f is its limit from inside the face, a hair
               // (kEdgeInset of the triangle) off the vertex toward the triangle's centre, so its
               // ray does not run along the neighbouring face.
-              const Tri& tri = geo.triangles[tc.first];
+              const Tri& tri = geo.triangles[af.tri];
               const Vec3d c = (geo.vertices[tri[0]] + geo.vertices[tri[1]] + geo.vertices[tri[2]]) * (1.0 / 3.0);
               b1 += kEdgeInset * (1.0 / 3.0 - b1), b2 += kEdgeInset * (1.0 / 3.0 - b2);
               m = m + (c - m) * kEdgeInset;
             }
-            Sample s = cad_sample(opts, g, out, tc.first, b1, b2, m, normals[v] * -1.0, face_folded[f], closed);
-            if (!s.exact && normals[v] == Vec3d{}) s.preset = ThicknessStatus::no_normal;
-            s.exclude_begin = std::uint32_t(set.exclude.size());
-            if (opts.method == ThicknessMethod::sphere)
-              set.exclude.insert(set.exclude.end(), around[v].begin(), around[v].end());
-            s.exclude_end = std::uint32_t(set.exclude.size());
-            set.samples.push_back(s);
-            if (!opts.exact || !opts.exact->covers(g)) break;  // flags only: the mesh normal, once
+            add(cad_sample(opts, g, out, af.tri, b1, b2, m, normals[v] * -1.0, face_folded[af.face], closed));
+            ++taken;
           }
+          if (taken > 0) continue;
+          if (projected == 0) {  // no face could place the vertex: an artefact of the mesh
+            Sample smp = cad_sample(opts, g, out, faces[0].tri, 0, 0, geo.vertices[v], normals[v] * -1.0, true, closed);
+            add(smp);
+            continue;
+          }
+          // Every face's ray would leave at once (an acute edge or corner): one sample from the
+          // vertex along the mean of the faces' exact normals, as a mesh vertex is sampled.
+          const double ml = length(mean);
+          Sample smp = cad_sample(opts, g, out, faces[0].tri, 0, 0, geo.vertices[v], normals[v] * -1.0, any_folded, closed);
+          smp.point = geo.vertices[v];
+          for (const AtFace& af : faces)
+            if (af.at) smp.point = af.at->point;
+          if (ml > 0) {
+            smp.inward = mean * (-1.0 / ml);
+            if (smp.preset != ThicknessStatus::tessellation) smp.preset = ThicknessStatus::ok;
+          } else {
+            smp.preset = ThicknessStatus::no_normal;
+          }
+          add(smp);
           continue;
         }
         if (normals[v] == Vec3d{}) continue;

@@ -80,6 +80,10 @@ std::vector<ConeDir> cone_directions(int k, double full_angle_deg) {
   return dirs;
 }
 
+// CAD exits where the ray makes less than about 15 degrees with the exit face (|cos| to its
+// normal below this) are checked against the whole B-rep for an earlier crossing.
+constexpr double kGrazingCos = 0.25;
+
 struct Measured {
   double t = detail::kNaN;
   ThicknessStatus status = ThicknessStatus::ok;
@@ -144,19 +148,35 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
     if (!s.cad) return {ray_exit_distance(w.it, s.geom, s.point, dir, opts.max_distance, tie, offset_of(s, dir))};
     ExitRecord rec;
     const double tm = exit_impl<true>(w.it, s.geom, s.mesh_point, dir, opts.max_distance, tie, 0, &rec);
+    const std::span<const std::uint8_t> folded = folded_flags(opts, s.geom);
+    const bool met_fold = !folded.empty() && rec.first_prim != kInvalidId && folded[rec.first_prim] != 0;
+    // Where the mesh gives no answer, the exact B-rep is asked directly (slow, rare).
+    auto exact_fallback = [&]() -> Measured {
+      const std::optional<double> t = opts.exact->first_crossing(s.geom, s.point, dir, tie);
+      if (!t) return {kNaN, ThicknessStatus::tessellation};
+      if (*t > opts.max_distance) return {kNaN, ThicknessStatus::no_exit};
+      return {*t};
+    };
     if (std::isnan(tm)) {
       // In a closed solid every ray finds an exit: one that does not slipped through the mesh.
       const bool artefact = s.closed && std::isinf(opts.max_distance);
-      return {kNaN, artefact ? ThicknessStatus::tessellation : ThicknessStatus::no_exit};
-    }
-    const std::span<const std::uint8_t> folded = folded_flags(opts, s.geom);
-    if (!folded.empty() && (folded[rec.prim] != 0 || (rec.first_prim != kInvalidId && folded[rec.first_prim] != 0)))
+      if (!artefact) return {kNaN, ThicknessStatus::no_exit};
+      if (s.exact && !met_fold) return exact_fallback();
       return {kNaN, ThicknessStatus::tessellation};
+    }
+    if (met_fold || (!folded.empty() && folded[rec.prim] != 0)) return {kNaN, ThicknessStatus::tessellation};
     if (!s.exact) return {tm};
-    const std::optional<double> t = opts.exact->intersect(s.geom, rec.prim, rec.u, rec.v, s.point, dir);
-    if (!t) return {kNaN, ThicknessStatus::tessellation};
-    if (*t > opts.max_distance) return {kNaN, ThicknessStatus::no_exit};
-    return {*t};
+    const std::optional<SurfaceCrossing> x = opts.exact->intersect(s.geom, rec.prim, rec.u, rec.v, s.point, dir);
+    if (!x) return exact_fallback();
+    double t = x->t;
+    // A ray that meets the face at a glancing angle may leave the exact solid before the mesh
+    // says (a graze the chords hide): the B-rep is asked for an earlier crossing.
+    if (!(std::abs(dot(x->normal, dir)) >= kGrazingCos)) {
+      const std::optional<double> first = opts.exact->first_crossing(s.geom, s.point, dir, tie);
+      if (first && *first < t) t = *first;
+    }
+    if (t > opts.max_distance) return {kNaN, ThicknessStatus::no_exit};
+    return {t};
   };
 
   auto measure = [&](Worker& w, const Sample& s) -> Measured {

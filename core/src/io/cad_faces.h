@@ -2,6 +2,7 @@
 // The B-rep faces of one loaded solid (internal to pierce_cad: OpenCASCADE types).
 #include <Geom_Surface.hxx>
 #include <TopoDS_Face.hxx>
+#include <TopoDS_Shape.hxx>
 
 #include <array>
 #include <vector>
@@ -18,6 +19,7 @@ struct CadFaces {
     double umin = 0, umax = 0, vmin = 0, vmax = 0;  // the face's parameter range (trimmed)
   };
   std::vector<Face> faces;
+  TopoDS_Shape shape;  // the solid (or surface) the faces belong to, placed
 };
 
 }  // namespace pierce

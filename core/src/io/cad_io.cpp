@@ -224,6 +224,7 @@ class Collector {
   // returns the number of faces without triangulation.
   std::size_t collect(const TopoDS_Shape& shape, CadSolid& s) {
     auto faces = std::make_shared<CadFaces>();
+    faces->shape = shape;
     s.link.faces = faces;
     std::size_t unmeshed = 0;
     for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {

@@ -1,10 +1,19 @@
 #include "pierce/io/cad_surfaces.h"
 
+#include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <BRepTopAdaptor_FClass2d.hxx>
+#include <IntCurvesFace_Intersector.hxx>
+#include <IntCurvesFace_ShapeIntersector.hxx>
+#include <Standard_Failure.hxx>
+#include <gp_Lin.hxx>
+#include <gp_Pnt2d.hxx>
 #include <gp_Pnt.hxx>
 #include <gp_Vec.hxx>
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <stdexcept>
 
 #include "cad_faces.h"
@@ -33,7 +42,57 @@ struct Start {
 
 }  // namespace
 
-CadSurfaces::CadSurfaces(std::vector<CadLink> links) : links_(std::move(links)) {
+struct CadSurfaces::Intersectors {
+  std::mutex mutex;
+  std::map<std::uint32_t, std::unique_ptr<IntCurvesFace_ShapeIntersector>> of_geom;
+};
+
+struct CadSurfaces::Classifiers {
+  std::vector<std::vector<std::unique_ptr<BRepTopAdaptor_FClass2d>>> of_geom;  // [geom][face]
+};
+
+CadSurfaces::~CadSurfaces() = default;
+
+std::optional<double> CadSurfaces::first_crossing(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin) const {
+  const CadLink& l = links_.at(geom);
+  if (l.empty() || l.faces->shape.IsNull()) return std::nullopt;
+  const std::lock_guard<std::mutex> lock(intersectors_->mutex);
+  try {
+    auto& x = intersectors_->of_geom[geom];
+    if (!x) {
+      x = std::make_unique<IntCurvesFace_ShapeIntersector>();
+      x->Load(l.faces->shape, 1e-9 * std::max(1.0, std::max({std::abs(org.x), std::abs(org.y), std::abs(org.z)})));
+    }
+    x->Perform(gp_Lin(gp_Pnt(org.x, org.y, org.z), gp_Dir(dir.x, dir.y, dir.z)), tmin,
+               std::numeric_limits<double>::infinity());
+    if (!x->IsDone()) return std::nullopt;
+    std::optional<double> best;
+    for (Standard_Integer i = 1; i <= x->NbPnt(); ++i)
+      if (x->WParameter(i) > tmin && (!best || x->WParameter(i) < *best)) best = x->WParameter(i);
+    return best;
+  } catch (const Standard_Failure&) {
+    return std::nullopt;
+  }
+}
+
+CadSurfaces::CadSurfaces(std::vector<CadLink> links)
+    : links_(std::move(links)),
+      intersectors_(std::make_unique<Intersectors>()),
+      classifiers_(std::make_unique<Classifiers>()) {
+  classifiers_->of_geom.resize(links_.size());
+  for (std::size_t g = 0; g < links_.size(); ++g) {
+    if (links_[g].empty()) continue;
+    for (const CadFaces::Face& f : links_[g].faces->faces) {
+      std::unique_ptr<BRepTopAdaptor_FClass2d> c;
+      try {
+        const double span = std::max(f.umax - f.umin, f.vmax - f.vmin);
+        c = std::make_unique<BRepTopAdaptor_FClass2d>(f.face, 1e-9 * std::max(span, 1e-300));
+      } catch (const Standard_Failure&) {
+        c.reset();  // unclassifiable: refined points on it are not checked against its trim
+      }
+      classifiers_->of_geom[g].push_back(std::move(c));
+    }
+  }
   folded_.resize(links_.size());
   for (std::size_t g = 0; g < links_.size(); ++g) {
     const CadLink& l = links_[g];
@@ -105,18 +164,36 @@ std::optional<analysis::SurfacePoint> CadSurfaces::project(std::uint32_t geom, s
       break;
     }
   }
-  if (!converged || !in_range(*s.face, u, v, 1e-3)) return std::nullopt;
+  const gp_Pnt target(p.x, p.y, p.z);
+  auto plausible = [&](double uu, double vv) {
+    return in_range(*s.face, uu, vv, 1e-3) && surf.Value(uu, vv).Distance(p0) <= 2 * s.size + surf.Value(uu, vv).Distance(target);
+  };
+  if (!converged || !plausible(u, v)) {
+    // Newton failed (near a pole or a strongly curved patch): OpenCASCADE's projection on the
+    // face's parameter range, the nearest solution.
+    converged = false;
+    try {
+      GeomAPI_ProjectPointOnSurf proj(target, s.face->surface, s.face->umin, s.face->umax, s.face->vmin, s.face->vmax);
+      if (proj.NbPoints() > 0) {
+        proj.LowerDistanceParameters(u, v);
+        converged = plausible(u, v);
+      }
+    } catch (const Standard_Failure&) {
+      converged = false;
+    }
+    if (!converged) return std::nullopt;
+  }
   surf.D1(u, v, q, su, sv);
-  if (q.Distance(p0) > 2 * s.size + q.Distance(gp_Pnt(p.x, p.y, p.z))) return std::nullopt;
   const gp_Vec n = su.Crossed(sv) * s.face->sign;
   const double len = n.Magnitude();
-  if (!(len > 1e-12 * su.Magnitude() * sv.Magnitude()) || !(len > 0)) return std::nullopt;
+  if (!(len > 1e-12 * su.Magnitude() * sv.Magnitude()) || !(len > 0))
+    return analysis::SurfacePoint{vec(q.XYZ()), Vec3d{}};  // a singular point: no normal
   return analysis::SurfacePoint{vec(q.XYZ()), vec(n.XYZ()) * (1.0 / len)};
 }
 
 // S(u, v) = org + t dir: Newton on (u, v, t) with the Jacobian [Su Sv -dir].
-std::optional<double> CadSurfaces::intersect(std::uint32_t geom, std::uint32_t prim, double b1, double b2, Vec3d org,
-                                             Vec3d dir) const {
+std::optional<analysis::SurfaceCrossing> CadSurfaces::intersect(std::uint32_t geom, std::uint32_t prim, double b1,
+                                                                double b2, Vec3d org, Vec3d dir) const {
   const Start s = start_of(links_.at(geom), prim, b1, b2);
   const Geom_Surface& surf = *s.face->surface;
   double u = s.u, v = s.v;
@@ -147,9 +224,44 @@ std::optional<double> CadSurfaces::intersect(std::uint32_t geom, std::uint32_t p
       break;
     }
   }
-  if (!converged || !(t > 0) || !in_range(*s.face, u, v, 1e-3)) return std::nullopt;
-  if (surf.Value(u, v).Distance(p0) > 2 * s.size + 1e-9 * scale) return std::nullopt;
-  return t;
+  const double t0 = gp_Vec(o, p0).Dot(d) / d.SquareMagnitude();
+  // The face's outward unit normal at (uu, vv), zero where undefined.
+  auto normal_at = [&](double uu, double vv) {
+    gp_Pnt pp;
+    gp_Vec du, dv;
+    surf.D1(uu, vv, pp, du, dv);
+    const gp_Vec n = du.Crossed(dv) * s.face->sign;
+    const double len = n.Magnitude();
+    return len > 1e-12 * du.Magnitude() * dv.Magnitude() && len > 0 ? vec(n.XYZ()) * (1.0 / len) : Vec3d{};
+  };
+  // Inside the face's trim: a crossing of the untrimmed surface beyond the face's boundary is
+  // not where the ray leaves (it left through a neighbour first).
+  const BRepTopAdaptor_FClass2d* trim = classifiers_->of_geom.at(geom).at(links_[geom].face.at(prim)).get();
+  auto in_face = [&](double uu, double vv) {
+    return !trim || trim->Perform(gp_Pnt2d(uu, vv)) != TopAbs_OUT;
+  };
+  if (converged && t > 0 && in_range(*s.face, u, v, 1e-3) &&
+      surf.Value(u, v).Distance(p0) <= 2 * s.size + 1e-9 * scale) {
+    if (!in_face(u, v)) return std::nullopt;  // the caller asks the whole B-rep
+    return analysis::SurfaceCrossing{t, normal_at(u, v)};
+  }
+  // Newton failed (near a pole, a grazing ray): OpenCASCADE's exact intersection of the line with
+  // the face, the crossing nearest to the start. Rare, so the intersector is built here.
+  try {
+    IntCurvesFace_Intersector x(s.face->face, 1e-9 * scale);
+    const double len = d.Magnitude();
+    x.Perform(gp_Lin(o, gp_Dir(d)), 0, std::numeric_limits<double>::infinity());
+    if (!x.IsDone()) return std::nullopt;
+    std::optional<analysis::SurfaceCrossing> best;
+    for (Standard_Integer i = 1; i <= x.NbPnt(); ++i) {
+      const double w = x.WParameter(i) / len;
+      if (!(w > 0) || x.Pnt(i).Distance(p0) > 2 * s.size + 1e-9 * scale) continue;
+      if (!best || std::abs(w - t0) < std::abs(best->t - t0)) best = analysis::SurfaceCrossing{w, normal_at(x.UParameter(i), x.VParameter(i))};
+    }
+    return best;
+  } catch (const Standard_Failure&) {
+    return std::nullopt;
+  }
 }
 
 std::shared_ptr<const CadSurfaces> cad_surfaces(const std::vector<LoadedFile>& files, std::size_t geometries) {

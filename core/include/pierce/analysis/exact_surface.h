@@ -16,6 +16,11 @@ struct SurfacePoint {
   Vec3d normal;  // unit, outward of the solid
 };
 
+struct SurfaceCrossing {
+  double t;      // along the line
+  Vec3d normal;  // unit outward normal of the face there (zero where undefined)
+};
+
 // Every call is const and may run on many threads at once.
 class ExactSurfaces {
  public:
@@ -29,15 +34,20 @@ class ExactSurfaces {
   virtual std::span<const std::uint8_t> folded(std::uint32_t geom) const = 0;
   // The point of the face of triangle `prim` nearest to `p`, by Newton steps on the surface from
   // the triangle's (u, v) at barycentrics (b1, b2) of its corners 1 and 2, with the face's unit
-  // outward normal there. nullopt when the iteration does not converge or the normal is
-  // undefined (a singular point such as a cone's apex).
+  // outward normal there (zero where it is undefined: a singular point such as a cone's apex).
+  // nullopt when no foot point is found.
   virtual std::optional<SurfacePoint> project(std::uint32_t geom, std::uint32_t prim, double b1, double b2,
                                               Vec3d p) const = 0;
   // The t > 0 where the line org + t dir crosses the face of triangle `prim`, by Newton steps on
-  // (u, v, t) from the triangle's (u, v) at barycentrics (b1, b2); nullopt when the iteration
-  // does not converge or leaves the face's parameter range.
-  virtual std::optional<double> intersect(std::uint32_t geom, std::uint32_t prim, double b1, double b2, Vec3d org,
-                                          Vec3d dir) const = 0;
+  // (u, v, t) from the triangle's (u, v) at barycentrics (b1, b2), the crossing nearest to that
+  // start; nullopt when there is none near it.
+  virtual std::optional<SurfaceCrossing> intersect(std::uint32_t geom, std::uint32_t prim, double b1, double b2,
+                                                   Vec3d org, Vec3d dir) const = 0;
+  // The fallback when the mesh gives no answer (no exit found, or the refinement failed): the
+  // smallest t > tmin where the line org + t dir (dir unit) crosses the exact boundary of
+  // geometry `geom`, from an exact intersection with every face; nullopt when there is none.
+  // Much slower than intersect(), and serialised: for the rare samples that need it.
+  virtual std::optional<double> first_crossing(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin) const = 0;
 };
 
 }  // namespace pierce::analysis

@@ -24,12 +24,18 @@ class CadSurfaces final : public analysis::ExactSurfaces {
   std::span<const std::uint8_t> folded(std::uint32_t geom) const override;
   std::optional<analysis::SurfacePoint> project(std::uint32_t geom, std::uint32_t prim, double b1, double b2,
                                                 Vec3d p) const override;
-  std::optional<double> intersect(std::uint32_t geom, std::uint32_t prim, double b1, double b2, Vec3d org,
-                                  Vec3d dir) const override;
+  std::optional<analysis::SurfaceCrossing> intersect(std::uint32_t geom, std::uint32_t prim, double b1, double b2,
+                                                     Vec3d org, Vec3d dir) const override;
+  std::optional<double> first_crossing(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin) const override;
+  ~CadSurfaces() override;
 
  private:
+  struct Intersectors;  // OpenCASCADE shape intersectors, built on first use
+  struct Classifiers;   // per face, whether a (u, v) lies inside its trimming wires
   std::vector<CadLink> links_;
   std::vector<std::vector<std::uint8_t>> folded_;
+  std::unique_ptr<Intersectors> intersectors_;
+  std::unique_ptr<Classifiers> classifiers_;
 };
 
 // The surfaces of every CAD file among `files` (as add_any_model returned them), for a scene of
