@@ -1,7 +1,7 @@
 // pierce_bench_cad_refine: what thickness true to the B-rep costs (issue 16). On CAD solids built
 // with OpenCASCADE (the tests' model builder: the bent sheet, the filleted box, the hollow torus,
-// the thin blended plate), `pierce thickness --per face` as the CLI runs it, once on the mesh only
-// (no exact surfaces) and once on the B-rep (samples projected onto their faces, exits refined by
+// the thin blended plate, the loft), `pierce thickness --per face` as the CLI runs it, once on the
+// mesh only (no exact surfaces) and once on the B-rep (samples projected onto their faces, exits refined by
 // Newton steps). Prints per model the samples, both times (single thread, thread CPU time, best of
 // --reps), the difference per sample, and the Newton steps alone per sample (projection plus exit
 // refinement on the same samples, timed apart). A benchmark, not a test: it prints, it never
@@ -68,7 +68,8 @@ int run(int argc, char** argv) {
   const Model models[] = {{"bent_sheet", test_models::bent_sheet},
                           {"filleted_box", test_models::filleted_box},
                           {"hollow_torus", test_models::hollow_torus},
-                          {"thin_blended_plate", test_models::thin_blended_plate}};
+                          {"thin_blended_plate", test_models::thin_blended_plate},
+                          {"lofted_solid", test_models::lofted_solid}};
   std::printf("pierce_bench_cad_refine\nmachine: %s, 1 thread, load %s, best of %d\n", cpu_model().c_str(),
               load_average().c_str(), reps);
   std::printf("%-20s %9s %12s %12s %14s %14s\n", "model", "samples", "mesh [s]", "B-rep [s]", "extra/sample",

@@ -18,17 +18,21 @@
 //
 // CAD input (ThicknessOptions::exact covers the geometry, see exact_surface.h): every sample
 // starts on the exact B-rep face, at the projection of the mesh sample onto the face of its
-// triangle, and is traced along the face's exact inward normal there; a vertex on an edge
-// between faces is sampled once per face (each sample a millionth of its triangle into its face,
-// so that its ray does not run along the neighbouring face) and keeps the smaller thickness
-// (brep_faces says how many). The exit found on the mesh is refined on the exact face of the triangle it crosses
-// (Newton steps from the triangle's UV), so ray and cone rays measure the B-rep, not the
-// tessellation (the sphere method's ball is still shrunk against the mesh, from the mesh sample
-// along the exact normal). A sample that starts on a folded triangle, first meets or leaves through one,
-// finds no exit in a closed solid (max_distance infinite), or whose projection or refinement
-// does not converge, gets status `tessellation` and no thickness: it is an artefact of the mesh,
-// counted per solid and left out of the statistics. Meshes (STL, OBJ, OFF, PLY) are measured as
-// before, bit for bit.
+// triangle, and is traced along the face's exact inward normal there. A vertex on an edge
+// between faces is sampled once per face whose inward normal enters the material there (each
+// sample a millionth of its triangle into its face, so that its ray does not run along the
+// neighbouring face) and keeps the smaller thickness (brep_faces says how many); at an acute
+// edge, where each face's ray would leave at once, once along the mean of the faces' normals.
+// The exit found on the mesh is refined on the exact face of the triangle it crosses (Newton
+// steps from the triangle's UV); where that gives no answer inside the face's trim, where the
+// ray meets the face at a glancing angle, or where the mesh has no exit in a closed solid, the
+// whole B-rep is intersected (ExactSurfaces::first_crossing). So ray and cone rays measure the
+// B-rep, not the tessellation (the sphere method's ball is still shrunk against the mesh, from
+// the mesh sample along the exact normal). A sample that starts on a folded triangle, first
+// meets or leaves through one, or finds no exit in a closed solid (max_distance infinite)
+// where the B-rep has none either, or whose projection fails, gets status `tessellation` and
+// no thickness: it is an artefact of the mesh, counted per solid and left out of the
+// statistics. Meshes (STL, OBJ, OFF, PLY) are measured as before, bit for bit.
 #include <cstddef>
 #include <cstdint>
 #include <limits>
