@@ -86,6 +86,16 @@ $PY -c "
 import json; j=json.load(open('$WORK/at.json')); e=j['elements']
 assert j['per']=='point' and len(e)==1 and abs(e[0]['thickness']-0.5)<1e-9, j" || fail "--at json"
 
+# Solids by assembly name (quoted or not); the block touching the plate reads its own 2 mm.
+printf 'solid,x,y,z\nplate_assy/block#2,7,2,4\n"plate_assy/plate",5,5,0\n  plate_assy/clash , 7 , 7 , 3.5\n' >"$WORK/pts3.csv"
+run "--at by name" "$PIERCE" thickness "$WORK/assembly.step" --at "$WORK/pts3.csv" -o "$WORK/at3.csv"
+$PY - "$WORK/at3.csv" <<'PYEOF' || fail "--at by name"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert [r["name"] for r in rows] == ["plate_assy/block#2", "plate_assy/plate", "plate_assy/clash"], rows
+assert all(abs(float(r["thickness"]) - 2) < 1e-9 and r["status"] == "ok" for r in rows), rows
+PYEOF
+
 printf 'solid,x,y,z\n0,1,2,3\n0,1,oops,3\n' >"$WORK/bad1.csv"
 expect_error "--at bad number" "bad1.csv, line 3: y 'oops' is not a finite number" -- \
   "$PIERCE" thickness "$SHEET" --at "$WORK/bad1.csv"
