@@ -250,23 +250,26 @@ SampleSet build_samples(const Scene& scene, const ThicknessOptions& opts, Thickn
           }
           if (taken > 0) continue;
           if (projected == 0) {  // no face could place the vertex: an artefact of the mesh
-            Sample smp = cad_sample(opts, g, out, faces[0].tri, 0, 0, geo.vertices[v], normals[v] * -1.0, true, closed);
+            Sample smp{g, out, geo.vertices[v], normals[v] * -1.0, 0, 0, kInvalidId};
+            smp.mesh_point = geo.vertices[v];
+            smp.cad = smp.exact = true;
+            smp.closed = closed;
+            smp.preset = ThicknessStatus::tessellation;
             add(smp);
             continue;
           }
           // Every face's ray would leave at once (an acute edge or corner): one sample from the
           // vertex along the mean of the faces' exact normals, as a mesh vertex is sampled.
           const double ml = length(mean);
-          Sample smp = cad_sample(opts, g, out, faces[0].tri, 0, 0, geo.vertices[v], normals[v] * -1.0, any_folded, closed);
-          smp.point = geo.vertices[v];
+          Sample smp{g, out, geo.vertices[v], normals[v] * -1.0, 0, 0, kInvalidId};
+          smp.mesh_point = geo.vertices[v];
+          smp.cad = smp.exact = true;
+          smp.closed = closed;
           for (const AtFace& af : faces)
-            if (af.at) smp.point = af.at->point;
-          if (ml > 0) {
-            smp.inward = mean * (-1.0 / ml);
-            if (smp.preset != ThicknessStatus::tessellation) smp.preset = ThicknessStatus::ok;
-          } else {
-            smp.preset = ThicknessStatus::no_normal;
-          }
+            if (af.at) smp.point = af.at->point;  // the vertex on the B-rep
+          if (ml > 0) smp.inward = mean * (-1.0 / ml);
+          smp.preset = any_folded ? ThicknessStatus::tessellation
+                                  : (ml > 0 ? ThicknessStatus::ok : ThicknessStatus::no_normal);
           add(smp);
           continue;
         }
