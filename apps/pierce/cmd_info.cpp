@@ -26,6 +26,14 @@ int run_info(const InfoOptions& o) {
       if (g >= f.first_geometry && g < f.first_geometry + f.geometry_count) return f.units;
     return std::string();
   };
+  // CAD solids: the check of their tessellation against the B-rep (null for meshes).
+  auto check_of = [&](std::uint32_t g) -> const TessellationCheck* {
+    for (const LoadedFile& f : files)
+      if (g >= f.first_geometry && g < f.first_geometry + f.geometry_count && g - f.first_geometry < f.cad.size() &&
+          !f.cad[g - f.first_geometry].empty())
+        return &f.cad[g - f.first_geometry].check;
+    return nullptr;
+  };
   if (o.json) {
     nlohmann::ordered_json j;
     for (const LoadedFile& f : files) {
@@ -54,6 +62,15 @@ int run_info(const InfoOptions& o) {
                              {"bounds_max", {r.bounds.hi.x, r.bounds.hi.y, r.bounds.hi.z}},
                              {"area", r.area},
                              {"volume", r.volume}});
+      if (const TessellationCheck* c = check_of(r.geom))
+        j["solids"].back()["tessellation"] = {{"brep_faces", c->faces},
+                                              {"folded_triangles", c->folded},
+                                              {"sliver_triangles", c->slivers},
+                                              {"folded_found", c->folded_found},
+                                              {"faces_folded", c->faces_folded},
+                                              {"faces_remeshed", c->faces_remeshed},
+                                              {"remesh_rounds", c->remesh_rounds},
+                                              {"deflection", c->final_deflection}};
     }
     std::printf("%s\n", j.dump(2).c_str());
     return 0;
@@ -75,6 +92,14 @@ int run_info(const InfoOptions& o) {
     std::printf("  area %g", r.area);
     if (r.closed) std::printf(", volume %g%s", r.volume, r.volume < 0 ? " (inward-facing winding)" : "");
     std::printf("\n");
+    if (const TessellationCheck* c = check_of(r.geom)) {
+      std::printf("  tessellation against the B-rep (%zu faces): %zu folded triangles, %zu sliver triangles", c->faces,
+                  c->folded, c->slivers);
+      if (c->folded_found > 0)
+        std::printf("; first mesh had %zu folded triangles on %zu faces, %zu faces remeshed (%d rounds, deflection %g)",
+                    c->folded_found, c->faces_folded, c->faces_remeshed, c->remesh_rounds, c->final_deflection);
+      std::printf("\n");
+    }
   }
   return 0;
 }

@@ -1,7 +1,10 @@
 // `pierce thickness MODEL`: wall-thickness map per vertex or per face (ray, cone or sphere
 // method), written as VTP (ParaView), CSV or JSON, with per-solid statistics on stdout.
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <filesystem>
 #include <iostream>
 #include <limits>
@@ -18,6 +21,7 @@
 #include "output_file.h"
 #include "pierce/analysis/thickness.h"
 #include "pierce/error.h"
+#include "pierce/io/cad_surfaces.h"
 #include "pierce/render/false_colour.h"
 #include "pierce/solid_reference.h"
 #include "progress.h"
@@ -41,6 +45,7 @@ struct ThicknessCli {
   double cone_angle = 120;
   std::vector<std::string> solids;
   std::string out;
+  std::string at;  // --at points.csv
   std::string png, png_size = "800x600", png_view = "-1,-1,-1";
   bool force = false, progress = false;
 };
@@ -58,6 +63,110 @@ std::vector<std::uint32_t> resolve_solids(const Scene& scene, const std::vector<
   return ids;
 }
 
+// One CSV line split into fields (RFC 4180 quotes allowed), spaces around fields trimmed.
+std::vector<std::string> split_csv(const std::string& line, const std::string& where) {
+  std::vector<std::string> out;
+  std::string cur;
+  bool quoted = false, was_quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') cur += '"', ++i;
+      else if (c == '"') quoted = false;
+      else cur += c;
+    } else if (c == '"' && cur.find_first_not_of(" \t") == std::string::npos) {
+      quoted = was_quoted = true;
+      cur.clear();
+    } else if (c == ',') {
+      out.push_back(was_quoted ? cur : trim_text(cur));
+      cur.clear();
+      was_quoted = false;
+    } else if (!(was_quoted && (c == ' ' || c == '\t'))) {
+      cur += c;
+    }
+  }
+  if (quoted) throw InputError(where + ": unterminated quote");
+  out.push_back(was_quoted ? cur : trim_text(cur));
+  return out;
+}
+
+struct AtPoints {
+  std::vector<std::uint32_t> solids;
+  std::vector<Vec3d> points, normals;  // normals empty when the file has none
+};
+
+// `--at` file: a header naming the columns solid,x,y,z and optionally nx,ny,nz (any order), then
+// one point per line. Blank lines and lines starting with '#' are skipped. Every bad row is an
+// InputError "FILE, line N: ...".
+AtPoints read_at_points(const std::string& path, const Scene& scene) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot open the points file");
+  std::string line;
+  std::size_t n = 0;
+  std::vector<std::string> header;
+  while (header.empty() && std::getline(in, line)) {
+    ++n;
+    const std::string t = trim_text(line);
+    if (t.empty() || t[0] == '#') continue;
+    header = split_csv(t, path + ", line " + std::to_string(n));
+  }
+  if (header.empty()) throw InputError(path + ": no header (expected solid,x,y,z[,nx,ny,nz])");
+  auto col = [&](const char* name) -> int {
+    int found = -1;
+    for (std::size_t i = 0; i < header.size(); ++i)
+      if (header[i] == name) {
+        if (found >= 0) throw InputError(path + ", line " + std::to_string(n) + ": column '" + name + "' twice");
+        found = int(i);
+      }
+    return found;
+  };
+  const int cs = col("solid"), cx = col("x"), cy = col("y"), cz = col("z");
+  const int cnx = col("nx"), cny = col("ny"), cnz = col("nz");
+  if (cs < 0 || cx < 0 || cy < 0 || cz < 0)
+    throw InputError(path + ", line " + std::to_string(n) + ": header needs the columns solid,x,y,z (got '" +
+                     trim_text(line) + "')");
+  const bool with_normals = cnx >= 0 || cny >= 0 || cnz >= 0;
+  if (with_normals && (cnx < 0 || cny < 0 || cnz < 0))
+    throw InputError(path + ", line " + std::to_string(n) + ": give all of nx,ny,nz or none");
+  AtPoints out;
+  while (std::getline(in, line)) {
+    ++n;
+    const std::string t = trim_text(line);
+    if (t.empty() || t[0] == '#') continue;
+    const std::string where = path + ", line " + std::to_string(n);
+    const std::vector<std::string> f = split_csv(t, where);
+    if (f.size() != header.size())
+      throw InputError(where + ": " + std::to_string(f.size()) + " fields, the header has " +
+                       std::to_string(header.size()));
+    auto number = [&](int c, const char* what) {
+      const std::string& v = f[std::size_t(c)];
+      char* end = nullptr;
+      errno = 0;
+      const double d = std::strtod(v.c_str(), &end);
+      if (v.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(d))
+        throw InputError(where + ": " + what + " '" + v + "' is not a finite number");
+      return d;
+    };
+    const std::string& solid = f[std::size_t(cs)];
+    const std::vector<std::uint32_t> found = find_solids(scene, solid);  // name, #N or N (solid_reference.h)
+    if (found.empty())
+      throw InputError(where + ": no solid '" + solid + "' (known: " + known_solid_names(scene) + ")");
+    if (found.size() > 1)
+      throw InputError(where + ": " + std::to_string(found.size()) + " solids are named '" + solid +
+                       "'; give the one meant as #N (its id in `pierce info`)");
+    const std::uint32_t id = found.front();
+    out.solids.push_back(id);
+    out.points.push_back({number(cx, "x"), number(cy, "y"), number(cz, "z")});
+    if (with_normals) {
+      const Vec3d nv{number(cnx, "nx"), number(cny, "ny"), number(cnz, "nz")};
+      if (!(length(nv) > 0)) throw InputError(where + ": the normal nx,ny,nz is zero");
+      out.normals.push_back(nv);
+    }
+  }
+  if (out.points.empty()) throw InputError(path + ": no points after the header");
+  return out;
+}
+
 void write_csv(std::FILE* f, const Scene& scene, const ThicknessResult& r) {
   std::fputs("id,solid,element,x,y,z,thickness,thin,status,name\n", f);
   for (std::size_t i = 0; i < r.size(); ++i) {
@@ -73,6 +182,11 @@ nlohmann::ordered_json solid_stats_json(const analysis::SolidThickness& s, const
   nlohmann::ordered_json j{{"solid", s.geom},       {"name", s.name},           {"source", scene.geometry(s.geom).source},
                            {"elements", s.elements}, {"valid", s.valid},         {"no_exit", s.no_exit},
                            {"no_normal", s.no_normal}, {"thin", s.thin}};
+  if (s.exact || s.tessellation > 0) {
+    j["tessellation"] = s.tessellation;
+    j["exact"] = s.exact;
+    j["edge_samples"] = s.edge_samples;
+  }
   if (s.valid > 0) {
     j["min"] = s.summary.min;
     j["max"] = s.summary.max;
@@ -90,7 +204,7 @@ void write_json(std::FILE* f, const Scene& scene, const ThicknessResult& r, cons
   nlohmann::ordered_json j;
   j["models"] = o.model.models;
   j["method"] = o.method;
-  j["per"] = o.per;
+  j["per"] = o.at.empty() ? o.per : "point";
   j["min_thickness"] = opts.min_thickness;
   if (std::isfinite(opts.max_distance)) j["max_distance"] = opts.max_distance;
   j["kernel"] = o.kernel;
@@ -103,6 +217,7 @@ void write_json(std::FILE* f, const Scene& scene, const ThicknessResult& r, cons
     e["thickness"] = std::isnan(r.thickness[i]) ? nlohmann::ordered_json() : nlohmann::ordered_json(r.thickness[i]);
     e["thin"] = bool(r.thin[i]);
     e["status"] = analysis::status_name(r.status[i]);
+    if (!r.brep_faces.empty()) e["brep_faces"] = r.brep_faces[i];  // CAD: faces sampled, smallest kept
     el.push_back(std::move(e));
   }
   const std::string text = j.dump(1);
@@ -131,6 +246,7 @@ void write_vtp_result(std::FILE* f, const Scene& scene, const ThicknessResult& r
   target.emplace_back("Thickness", r.thickness);
   target.emplace_back("Thin", r.thin);
   target.emplace_back("Status", std::move(status));
+  if (!r.brep_faces.empty()) target.emplace_back("BrepFaces", r.brep_faces);  // CAD: faces sampled per element
   d.point_data.emplace_back("SolidId", std::move(point_solid));
   d.cell_data.emplace_back("SolidId", std::move(cell_solid));
   if (!write_vtp(f, d)) throw std::runtime_error("write error");
@@ -143,7 +259,17 @@ void print_summary(const Scene& scene, const ThicknessResult& r, const analysis:
                 s.valid);
     if (s.no_exit) std::printf(", %zu without exit (open mesh or beyond max distance)", s.no_exit);
     if (s.no_normal) std::printf(", %zu without normal", s.no_normal);
+    if (s.tessellation)
+      std::printf(", %zu excluded as tessellation artefacts (folded triangles, no exit in a closed solid or no "
+                  "B-rep solution; status tessellation)",
+                  s.tessellation);
     std::printf("\n");
+    if (s.exact) {
+      std::printf("  sampled on the exact B-rep, exits refined on it");
+      if (s.edge_samples)
+        std::printf("; %zu vertices on B-rep edges show the smaller of their per-face samples", s.edge_samples);
+      std::printf("\n");
+    }
     if (s.valid == 0) continue;
     auto pct = [&](double q) {
       for (auto [k, v] : s.summary.percentiles)
@@ -193,9 +319,17 @@ int run_thickness(const ThicknessCli& o) {
   const KernelKind kernel = exact_kernel_option(o.kernel);
   check_picture_options(o.png, o.out, o.force, o.png_size, o.png_view);
 
+  if (!o.at.empty()) {
+    if (format == Format::vtp) throw InputError("--at: write the values to .csv or .json (-o), not .vtp");
+    if (!o.png.empty()) throw InputError("--at and --png cannot be combined");
+  }
+
   Scene scene;
-  load_models(scene, o.model);
+  const std::vector<LoadedFile> files = load_models(scene, o.model);
   if (interrupted()) return cancelled();
+  const std::shared_ptr<const CadSurfaces> exact = cad_surfaces(files, scene.geometries().size());
+  AtPoints at;
+  if (!o.at.empty()) at = read_at_points(o.at, scene);
   analysis::ThicknessOptions opts;
   opts.method = parse_enum_or_throw<ThicknessMethod>(o.method);
   opts.per = parse_enum_or_throw<SampleAt>(o.per);
@@ -208,11 +342,14 @@ int run_thickness(const ThicknessCli& o) {
   opts.origin_offsets = o.origin_offsets == "on" ? analysis::OffsetMode::on : analysis::OffsetMode::off;
   opts.offset_set = parse_hemisphere_set(o.offset_set).value_or(HemisphereSet::center);
   opts.solids = resolve_solids(scene, o.solids);
+  opts.exact = exact.get();
   const Accel accel(scene);
   if (interrupted()) return cancelled();
 
   LazyProgressBar bar("thickness", o.progress);
-  const ThicknessResult r = analysis::compute_thickness(accel, opts, std::ref(bar));
+  const ThicknessResult r = o.at.empty()
+                                ? analysis::compute_thickness(accel, opts, std::ref(bar))
+                                : analysis::thickness_at(accel, at.solids, at.points, at.normals, opts, std::ref(bar));
   bar.finish();
   if (!r.completed || interrupted()) return cancelled();
 
@@ -251,6 +388,10 @@ std::function<int()> register_thickness(CLI::App& app) {
   cmd->add_option("--cone-angle", o->cone_angle, "Cone method: full opening angle, degrees")
       ->check(CLI::Range(0.1, 179.0))
       ->capture_default_str();
+  cmd->add_option("--at", o->at,
+                  "Thickness at the points of this CSV file (header solid,x,y,z[,nx,ny,nz]; solid by name or id), "
+                  "each projected onto its solid's boundary (--per does not apply); -o .csv/.json gets one row per input "
+                  "row, in order (id = input row from 0)");
   cmd->add_option("--solid", o->solids, "Only these solids (name, #N or N for geometry id N; repeatable); the others still bound rays");
   add_exact_kernel_option(cmd, o->kernel);
   cmd->add_option("--origin-offsets", o->origin_offsets,

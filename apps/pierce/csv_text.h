@@ -14,6 +14,13 @@ inline std::string csv_field(const std::string& s) {
   return q + "\"";
 }
 
+// `s` without leading and trailing spaces, tabs and carriage returns.
+inline std::string trim_text(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return {};
+  return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
+}
+
 // A double that reads back to the same value. Every CSV of the CLI writes a missing value (NaN)
 // as `nan`, which Python, NumPy, pandas and ParaView's CSV reader all read back as NaN.
 inline std::string exact_number(double v) {

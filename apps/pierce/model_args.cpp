@@ -19,6 +19,11 @@ void add_model_args(CLI::App* cmd, ModelArgs& args, bool several) {
                   "CAD tessellation: largest angle between neighbouring triangles, degrees")
       ->check(CLI::Range(0.01, 179.0))
       ->capture_default_str();
+  cmd->add_option("--fold-remesh-rounds", args.tessellation.fold_remesh_rounds,
+                  "CAD tessellation: a solid whose triangles fold against the B-rep is meshed again, finer, up to "
+                  "this many times; 0 = only flag the folds (thickness status tessellation)")
+      ->check(CLI::Range(0, 10))
+      ->capture_default_str();
 }
 
 std::vector<LoadedFile> load_models(Scene& scene, const ModelArgs& args) {

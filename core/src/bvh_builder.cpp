@@ -243,21 +243,11 @@ bool build_with_embree(const std::vector<Ref<T>>& refs, const BvhBuildOptions& o
   std::vector<RTCBuildPrimitive> prims(refs.size());
   for (std::size_t i = 0; i < refs.size(); ++i) prims[i] = detail::build_primitive(refs[i].box, std::uint32_t(i));
   RTCBVH bvh = rtcNewBVH(device);
-  RTCBuildArguments args = rtcDefaultBuildArguments();
-  args.buildQuality = RTC_BUILD_QUALITY_MEDIUM;
+  RTCBuildArguments args = detail::build_arguments(bvh, prims, opts.traversal_cost, embree_create_node,
+                                                   embree_set_children, embree_set_bounds, embree_create_leaf);
   args.maxBranchingFactor = 2;
   args.minLeafSize = 1;
   args.maxLeafSize = std::uint32_t(std::clamp(opts.max_leaf_size, 1, 32));
-  args.traversalCost = opts.traversal_cost;
-  args.intersectionCost = 1.0f;
-  args.bvh = bvh;
-  args.primitives = prims.data();
-  args.primitiveCount = prims.size();
-  args.primitiveArrayCapacity = prims.size();
-  args.createNode = embree_create_node;
-  args.setNodeChildren = embree_set_children;
-  args.setNodeBounds = embree_set_bounds;
-  args.createLeaf = embree_create_leaf;
   void* root = rtcBuildBVH(&args);
   bool ok = root != nullptr && rtcGetDeviceError(device) == RTC_ERROR_NONE;
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 #include "pierce/bbox.h"
 
@@ -32,6 +33,26 @@ template <typename T>
 RTCBuildPrimitive build_primitive(const BBox<T>& b, std::uint32_t id) {
   return {round_down(double(b.lo.x)), round_down(double(b.lo.y)), round_down(double(b.lo.z)), 0,
           round_up(double(b.hi.x)),   round_up(double(b.hi.y)),   round_up(double(b.hi.z)),   id};
+}
+
+// Arguments for a build over `prims` (ids = their indices) into `bvh` with Pierce's callbacks, at
+// medium quality; the caller sets branching factor and leaf sizes.
+inline RTCBuildArguments build_arguments(RTCBVH bvh, std::vector<RTCBuildPrimitive>& prims, float traversal_cost,
+                                         RTCCreateNodeFunction create_node, RTCSetNodeChildrenFunction set_children,
+                                         RTCSetNodeBoundsFunction set_bounds, RTCCreateLeafFunction create_leaf) {
+  RTCBuildArguments args = rtcDefaultBuildArguments();
+  args.buildQuality = RTC_BUILD_QUALITY_MEDIUM;
+  args.traversalCost = traversal_cost;
+  args.intersectionCost = 1.0f;
+  args.bvh = bvh;
+  args.primitives = prims.data();
+  args.primitiveCount = prims.size();
+  args.primitiveArrayCapacity = prims.size();
+  args.createNode = create_node;
+  args.setNodeChildren = set_children;
+  args.setNodeBounds = set_bounds;
+  args.createLeaf = create_leaf;
+  return args;
 }
 
 }  // namespace pierce::detail

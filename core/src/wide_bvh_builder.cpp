@@ -206,8 +206,8 @@ bool build_with_embree(const Scene& scene, const BvhBuildOptions& opts, WideBvh<
   });
 
   RTCBVH bvh = rtcNewBVH(device);
-  RTCBuildArguments args = rtcDefaultBuildArguments();
-  args.buildQuality = RTC_BUILD_QUALITY_MEDIUM;
+  RTCBuildArguments args =
+      detail::build_arguments(bvh, prims, opts.traversal_cost, create_node, set_children, set_bounds, create_leaf);
   args.maxBranchingFactor = kWideArity;
   // A leaf block tests its eight lanes at once: the SAH counts leaf cost per block of eight.
   args.sahBlockSize = kBlockLanes;
@@ -215,16 +215,6 @@ bool build_with_embree(const Scene& scene, const BvhBuildOptions& opts, WideBvh<
   // the SAH: a subtree of one block's worth of triangles becomes one leaf block (as the collapse).
   args.maxLeafSize = std::uint32_t(std::clamp(opts.max_leaf_size, 1, 32));
   args.minLeafSize = std::min<std::uint32_t>(kBlockLanes, args.maxLeafSize);
-  args.traversalCost = opts.traversal_cost;
-  args.intersectionCost = 1.0f;
-  args.bvh = bvh;
-  args.primitives = prims.data();
-  args.primitiveCount = prims.size();
-  args.primitiveArrayCapacity = prims.size();
-  args.createNode = create_node;
-  args.setNodeChildren = set_children;
-  args.setNodeBounds = set_bounds;
-  args.createLeaf = create_leaf;
   void* root = rtcBuildBVH(&args);
   bool ok = root != nullptr && rtcGetDeviceError(device) == RTC_ERROR_NONE;
   if (ok) {

@@ -5,6 +5,8 @@ the result objects it created (one Mesh::Feature per solid, in a group), and a s
 Report view. The analysed objects are not modified.
 """
 import math
+import os
+import tempfile
 from dataclasses import dataclass
 
 import numpy as np
@@ -102,9 +104,12 @@ class ThicknessRun:
                 line += "no thickness found"
             if o.threshold > 0:
                 line += "; %d thin (< %.4g)" % (s.thin_count, o.threshold)
-            missing = n - st.count
+            tessellation = getattr(s.stats, "tessellation", 0)
+            missing = n - st.count - tessellation
             if missing:
                 line += "; %d without thickness (ray escaped or no normal)" % missing
+            if tessellation:
+                line += "; %d excluded as tessellation artefacts (status tessellation)" % tessellation
             lines.append(line)
         for w in self.warnings:
             lines.append("Pierce: warning: " + w)
@@ -211,6 +216,60 @@ def run(objects, options, doc=None, progress=None, cancel=None):
     if options.create_objects:
         create_objects(doc or objects[0].Document, result)
     return result
+
+
+class CaliperReading:
+    """The wall at one picked point: thickness (NaN: none), status name, the point on the B-rep
+    and the outward normal there, and where it was picked."""
+
+    def __init__(self, label, subname, thickness, status, point, normal):
+        self.label = label
+        self.subname = subname
+        self.thickness = thickness
+        self.status = status
+        self.point = point
+        self.normal = normal
+
+    def text(self):
+        p = self.point
+        where = "'%s' %s at (%.6g, %.6g, %.6g)" % (self.label, self.subname, p[0], p[1], p[2])
+        if self.status == "ok":
+            return "Pierce caliper: wall %.6g mm on %s (exact B-rep)" % (self.thickness, where)
+        return "Pierce caliper: no wall on %s (%s)" % (where, self.status)
+
+
+def caliper(obj, subname, point, method="ray", max_distance=math.inf):
+    """The wall thickness of `obj` at `point` (global coordinates) on its face `subname` (e.g.
+    "Face3"), like a caliper: the point is projected onto that solid's exact B-rep face and the
+    wall is measured along the face's inward normal there, the exit refined on the B-rep
+    (pierce.thickness_at on the solid written as BREP)."""
+    pierce = _pierce()
+    if not getattr(pierce, "HAS_CAD", False):
+        raise UserError("This Pierce build has no OpenCASCADE: the caliper needs it.")
+    if not subname.startswith("Face"):
+        raise UserError("Pick a point on a face (got '%s')." % subname)
+    shape = obj.Shape
+    try:
+        face = shape.getElement(subname)
+    except Exception:
+        raise UserError("'%s' has no %s." % (obj.Label, subname))
+    solid = None
+    for sol in shape.Solids:
+        if any(f.isSame(face) for f in sol.Faces):
+            solid = sol
+            break
+    if solid is None:
+        raise UserError("%s of '%s' is not on a solid." % (subname, obj.Label))
+    with tempfile.TemporaryDirectory(prefix="pierce_caliper_") as d:
+        path = os.path.join(d, "solid.brep")
+        solid.exportBrep(path)
+        scene = pierce.Scene()
+        pierce.add_model_files(scene, [path])
+    r = pierce.thickness_at(scene, 0, [[float(point[0]), float(point[1]), float(point[2])]], method=method,
+                            max_distance=max_distance)
+    status = pierce.THICKNESS_STATUS[int(r.status[0])]
+    return CaliperReading(obj.Label, subname, float(r.thickness[0]), status, tuple(float(v) for v in r.point[0]),
+                          tuple(float(v) for v in r.normal[0]))
 
 
 def _add(obj, kind, name, group, doc, value):

@@ -5,6 +5,7 @@
 #include "pierce/generators.h"
 #include "pierce/io/mesh_io.h"
 #ifdef PIERCE_PY_WITH_CAD
+#include "pierce/io/cad_surfaces.h"
 #include "pierce/io/model_io.h"
 #endif
 #include "pierce/io/ray_source.h"
@@ -30,7 +31,8 @@ void bind_io(pyb::module_& m) {
 
   m.def(
       "add_model_files",
-      [](PyScene& s, const std::vector<std::string>& paths, double linear_deflection, double angular_deflection) {
+      [](PyScene& s, const std::vector<std::string>& paths, double linear_deflection, double angular_deflection,
+         int fold_remesh_rounds) {
         if (s.in_use()) throw std::runtime_error("add_model_files: the scene is in use by a running call");
         // Everything is read into a scratch scene first: a bad file leaves the scene as it was.
         Scene scratch;
@@ -42,6 +44,7 @@ void bind_io(pyb::module_& m) {
           TessellationOptions t;
           t.linear_deflection = linear_deflection;
           t.angular_deflection_deg = angular_deflection;
+          t.fold_remesh_rounds = fold_remesh_rounds;
           files = add_any_model(scratch, paths, t);
         }
         const auto first = static_cast<std::uint32_t>(s.scene.geometries().size());
@@ -52,24 +55,52 @@ void bind_io(pyb::module_& m) {
           d["units"] = f.units;
           d["linear_deflection"] = f.linear_deflection;
           d["warnings"] = f.warnings;
+          pyb::list checks;  // per solid of a CAD file: its tessellation checked against the B-rep
+          for (const CadLink& l : f.cad) {
+            pyb::dict c;
+            c["brep_faces"] = l.check.faces;
+            c["folded"] = l.check.folded;
+            c["slivers"] = l.check.slivers;
+            c["folded_found"] = l.check.folded_found;
+            c["faces_folded"] = l.check.faces_folded;
+            c["faces_remeshed"] = l.check.faces_remeshed;
+            c["remesh_rounds"] = l.check.remesh_rounds;
+            c["deflection"] = l.check.final_deflection;
+            checks.append(c);
+          }
+          d["tessellation"] = checks;
           info.append(d);
         }
 #else
-        (void)linear_deflection, (void)angular_deflection;
+        (void)linear_deflection, (void)angular_deflection, (void)fold_remesh_rounds;
         {
           pyb::gil_scoped_release no_gil;
           add_model_files(scratch, paths);
         }
 #endif
         for (const Geometry& g : scratch.geometries()) s.scene.add_mesh(g.vertices, g.triangles, g.name, g.source);
+#ifdef PIERCE_PY_WITH_CAD
+        bool any_cad = false;
+        s.cad.resize(first);
+        for (const LoadedFile& f : files)
+          for (std::uint32_t k = 0; k < f.geometry_count; ++k) {
+            s.cad.push_back(k < f.cad.size() ? f.cad[k] : CadLink{});
+            any_cad = any_cad || !s.cad.back().empty();
+          }
+        for (const CadLink& l : s.cad) any_cad = any_cad || !l.empty();
+        if (any_cad) s.exact = std::make_shared<CadSurfaces>(s.cad);
+#endif
         s.invalidate_accel();
         return info;
       },
       pyb::arg("scene"), pyb::arg("paths"), pyb::kw_only(), pyb::arg("linear_deflection") = 0.0,
-      pyb::arg("angular_deflection") = 15.0,
+      pyb::arg("angular_deflection") = 15.0, pyb::arg("fold_remesh_rounds") = 3,
       "Adds every solid of the files (STL/OBJ/OFF/PLY, and STEP/IGES/BREP when built with OpenCASCADE;\n"
       "geometry source = path). CAD files are tessellated with linear_deflection (model units, 0 = 0.1% of\n"
-      "the diagonal) and angular_deflection (degrees). Returns per-file info (CAD builds) or [].");
+      "the diagonal) and angular_deflection (degrees); a solid whose mesh folds against the B-rep is meshed\n"
+      "again, finer, up to fold_remesh_rounds times (0: folds are only flagged). Returns per-file info (CAD\n"
+      "builds: path, geometries, units, linear_deflection, warnings, and per solid 'tessellation': the check\n"
+      "against the B-rep) or []. Thickness maps of CAD solids are sampled on the exact B-rep.");
 
   m.attr("HAS_CAD") =
 #ifdef PIERCE_PY_WITH_CAD

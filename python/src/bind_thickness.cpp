@@ -14,6 +14,33 @@ namespace {
 
 using namespace pierce::analysis;
 
+ThicknessOptions make_options(const PyScene& s, const std::string& method, const std::string& per,
+                              double max_distance, double min_thickness, int cone_rays, double cone_angle,
+                              const std::string& cone_aggregate, int sphere_max_iterations, double tie_tolerance_rel,
+                              const std::string& kernel, std::vector<std::uint32_t> solids,
+                              const std::optional<std::vector<double>>& percentiles, int histogram_bins) {
+  ThicknessOptions o;
+  o.method = parse_enum_or_throw<ThicknessMethod>(method);
+  o.per = parse_enum_or_throw<SampleAt>(per);
+  o.max_distance = max_distance;
+  o.min_thickness = min_thickness;
+  o.cone_rays = cone_rays;
+  o.cone_angle_deg = cone_angle;
+  o.cone_aggregate = parse_enum_or_throw<ConeAggregate>(cone_aggregate);
+  o.sphere_max_iterations = sphere_max_iterations;
+  o.tie_tolerance_rel = tie_tolerance_rel;
+  o.kernel = kernel_from_name(kernel);
+  o.solids = std::move(solids);
+  if (percentiles) o.percentiles = *percentiles;
+  o.histogram_bins = histogram_bins;
+  o.exact = s.exact.get();
+  for (auto g : o.solids)
+    if (g >= s.scene.geometries().size())
+      throw pyb::value_error("thickness: solid " + std::to_string(g) + " is not in the scene (it has " +
+                             std::to_string(s.scene.geometries().size()) + " geometries)");
+  return o;
+}
+
 }  // namespace
 
 void bind_thickness(pyb::module_& m) {
@@ -49,6 +76,11 @@ void bind_thickness(pyb::module_& m) {
       .def_readonly("no_exit", &SolidThickness::no_exit)
       .def_readonly("no_normal", &SolidThickness::no_normal)
       .def_readonly("thin", &SolidThickness::thin)
+      .def_readonly("tessellation", &SolidThickness::tessellation,
+                    "CAD: samples excluded as tessellation artefacts (status tessellation)")
+      .def_readonly("edge_samples", &SolidThickness::edge_samples,
+                    "CAD: vertices on B-rep edges, showing the smaller of their per-face samples")
+      .def_readonly("exact", &SolidThickness::exact, "sampled on the exact B-rep (CAD input)")
       .def_readonly("summary", &SolidThickness::summary)
       .def("__repr__", [](const SolidThickness& s) {
         return "<pierce.SolidThickness " + std::to_string(s.geom) + " '" + s.name + "': " +
@@ -95,7 +127,12 @@ void bind_thickness(pyb::module_& m) {
         const auto& r = self.cast<const ThicknessResult&>();
         static_assert(sizeof(ThicknessStatus) == sizeof(std::uint8_t));
         return readonly_view(reinterpret_cast<const std::uint8_t*>(r.status.data()), r.status.size(), 0, self);
-      }, "(N,) uint8: 0 ok, 1 no_exit, 2 no_normal (see THICKNESS_STATUS)")
+      }, "(N,) uint8: 0 ok, 1 no_exit, 2 no_normal, 3 tessellation (see THICKNESS_STATUS)")
+      .def_property_readonly("brep_faces", [](pyb::object self) {
+        const auto& r = self.cast<const ThicknessResult&>();
+        return readonly_view(r.brep_faces.data(), r.brep_faces.size(), 0, self);
+      }, "(N,) uint8 CAD: B-rep faces sampled at the element (2+: a vertex on an edge, the smallest kept); "
+         "empty for meshes")
       .def("__repr__", [](const ThicknessResult& r) {
         return "<pierce.ThicknessResult " + std::to_string(r.size()) + " " +
                (r.per == SampleAt::vertex ? "vertices" : "faces") + ", " + std::to_string(r.solids.size()) +
@@ -118,24 +155,9 @@ void bind_thickness(pyb::module_& m) {
          double tie_tolerance_rel, const std::string& kernel, std::vector<std::uint32_t> solids,
          std::optional<std::vector<double>> percentiles, int histogram_bins, const pyb::object& progress,
          CancelToken* cancel) {
-        ThicknessOptions o;
-        o.method = parse_enum_or_throw<ThicknessMethod>(method);
-        o.per = parse_enum_or_throw<SampleAt>(per);
-        o.max_distance = max_distance;
-        o.min_thickness = min_thickness;
-        o.cone_rays = cone_rays;
-        o.cone_angle_deg = cone_angle;
-        o.cone_aggregate = parse_enum_or_throw<ConeAggregate>(cone_aggregate);
-        o.sphere_max_iterations = sphere_max_iterations;
-        o.tie_tolerance_rel = tie_tolerance_rel;
-        o.kernel = kernel_from_name(kernel);
-        o.solids = std::move(solids);
-        if (percentiles) o.percentiles = *percentiles;
-        o.histogram_bins = histogram_bins;
-        for (auto g : o.solids)
-          if (g >= s.scene.geometries().size())
-            throw pyb::value_error("thickness: solid " + std::to_string(g) + " is not in the scene (it has " +
-                                   std::to_string(s.scene.geometries().size()) + " geometries)");
+        const ThicknessOptions o = make_options(s, method, per, max_distance, min_thickness, cone_rays, cone_angle,
+                                                cone_aggregate, sphere_max_iterations, tie_tolerance_rel, kernel,
+                                                std::move(solids), percentiles, histogram_bins);
         auto result = std::make_unique<ThicknessResult>();
         PyScene::Use use(s);
         run_with_progress(progress, cancel, 0, [&](ProgressState& st) {
@@ -152,7 +174,63 @@ void bind_thickness(pyb::module_& m) {
       "Wall thickness per vertex or per face of the given solids (all when empty); the other solids take part\n"
       "as neighbours. method: ray (along the inward normal to where the ray leaves the solid), cone\n"
       "(shape-diameter function over cone_rays rays in a cone_angle-degree cone) or sphere (largest inscribed\n"
-      "ball). Elements whose ray escapes (open mesh, beyond max_distance) get NaN, status no_exit.");
+      "ball). Elements whose ray escapes (open mesh, beyond max_distance) get NaN, status no_exit.\n"
+      "CAD files (add_model_files) are sampled on the exact B-rep with exits refined on it; tessellation\n"
+      "artefacts get NaN, status tessellation, and are left out of the statistics (SolidThickness.tessellation).");
+
+  m.def(
+      "thickness_at",
+      [](PyScene& s, const pyb::handle& solids, const pyb::handle& points, const pyb::object& normals,
+         const std::string& method, double max_distance, double min_thickness, int cone_rays, double cone_angle,
+         const std::string& cone_aggregate, int sphere_max_iterations, double tie_tolerance_rel,
+         const std::string& kernel, std::optional<std::vector<double>> percentiles, int histogram_bins,
+         const pyb::object& progress, CancelToken* cancel) {
+        const auto pts = as_points(points, "points");
+        const auto n = static_cast<std::size_t>(pts.shape(0));
+        std::vector<Vec3d> p(n), nv;
+        for (std::size_t i = 0; i < n; ++i) p[i] = {pts.at(i, 0), pts.at(i, 1), pts.at(i, 2)};
+        if (!normals.is_none()) {
+          const auto nn = as_points(normals, "normals");
+          if (static_cast<std::size_t>(nn.shape(0)) != n) throw pyb::value_error("normals: one per point");
+          nv.resize(n);
+          for (std::size_t i = 0; i < n; ++i) nv[i] = {nn.at(i, 0), nn.at(i, 1), nn.at(i, 2)};
+        }
+        auto g = pyb::array_t<std::int64_t, pyb::array::c_style | pyb::array::forcecast>::ensure(solids);
+        if (!g) {
+          PyErr_Clear();
+          throw pyb::type_error("solids must be an integer or an array of geometry ids");
+        }
+        if (g.ndim() > 1 || (g.ndim() == 1 && static_cast<std::size_t>(g.size()) != n))
+          throw pyb::value_error("solids must be one id or one per point");
+        std::vector<std::uint32_t> geom(n);
+        const auto n_geoms = static_cast<std::int64_t>(s.scene.geometries().size());
+        for (std::size_t i = 0; i < n; ++i) {
+          const std::int64_t v = g.ndim() == 0 ? *g.data() : g.data()[i];
+          if (v < 0 || v >= n_geoms)
+            throw pyb::value_error("thickness_at: point " + std::to_string(i) + ": solid " + std::to_string(v) +
+                                   " is not in the scene");
+          geom[i] = static_cast<std::uint32_t>(v);
+        }
+        const ThicknessOptions o = make_options(s, method, "face", max_distance, min_thickness, cone_rays, cone_angle,
+                                                cone_aggregate, sphere_max_iterations, tie_tolerance_rel, kernel, {},
+                                                percentiles, histogram_bins);
+        auto result = std::make_unique<ThicknessResult>();
+        PyScene::Use use(s);
+        run_with_progress(progress, cancel, 0, [&](ProgressState& st) {
+          *result = thickness_at(s.accel(), geom, p, nv, o, [&](std::size_t d, std::size_t t) { return st.report(d, t); });
+        });
+        return result;
+      },
+      pyb::arg("scene"), pyb::arg("solids"), pyb::arg("points"), pyb::arg("normals") = pyb::none(), pyb::kw_only(),
+      pyb::arg("method") = "ray", pyb::arg("max_distance") = std::numeric_limits<double>::infinity(),
+      pyb::arg("min_thickness") = 0.0, pyb::arg("cone_rays") = 30, pyb::arg("cone_angle") = 120.0,
+      pyb::arg("cone_aggregate") = "shapira", pyb::arg("sphere_max_iterations") = 100,
+      pyb::arg("tie_tolerance_rel") = 1e-6, pyb::arg("kernel") = "queue", pyb::arg("percentiles") = pyb::none(),
+      pyb::arg("histogram_bins") = 20, pyb::arg("progress") = pyb::none(), pyb::arg("cancel") = nullptr,
+      "Thickness at given points (N, 3) of solids (one id or one per point), like a caliper: each point is\n"
+      "projected onto its solid's boundary (on CAD input onto the exact B-rep face) and measured there along\n"
+      "the given outward normals (N, 3) or the surface's. One entry per point, in order (ThicknessResult;\n"
+      "element = triangle the point was projected onto).");
 
   m.def(
       "thickness_along",

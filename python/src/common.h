@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "pierce/analysis/exact_surface.h"
+#include "pierce/io/cad_io.h"
 #include "pierce/kernel.h"
 #include "pierce/kernel_names.h"
 #include "pierce/scene.h"
@@ -23,6 +25,10 @@ namespace pyb = pybind11;
 class PyScene {
  public:
   Scene scene;
+  // CAD files (add_model_files): per geometry its link to the B-rep (empty for meshes), and the
+  // exact surfaces over them that thickness maps sample (null when there is no CAD geometry).
+  std::vector<CadLink> cad;
+  std::shared_ptr<const analysis::ExactSurfaces> exact;
 
   // Builds the acceleration structures if needed. Call without the GIL.
   const Accel& accel();

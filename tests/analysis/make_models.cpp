@@ -1,6 +1,8 @@
 // Writes the CAD models the CLI tests use: `make_models DIR` creates DIR/assembly.step (the tests'
 // STEP assembly, tests/occt/step_assembly.h: plate, two touching blocks, a clash sunk 0.5 into it) and
-// DIR/hollow.brep (hollow sphere, outer radius 1, inner 0.95).
+// DIR/hollow.brep (hollow sphere, outer radius 1, inner 0.95), DIR/sheet.brep (the bent sheet 0.5
+// thick), DIR/folded.brep (the filleted box 10 x 8 x 6 with one triangle of its mesh folded) and
+// DIR/torus.brep (the hollow torus, wall 0.2); see tests/occt/step_assembly.h.
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
@@ -35,7 +37,11 @@ int main(int argc, char** argv) {
   Message::DefaultMessenger()->ChangePrinters().Clear();  // no transfer statistics on stdout
   const std::string dir = argv[1];
   try {
-    pierce::test_models::write_step_assembly(dir + "/assembly.step");
+    namespace tm = pierce::test_models;
+    tm::write_step_assembly(dir + "/assembly.step");
+    tm::write_brep(tm::bent_sheet(), dir + "/sheet.brep");
+    tm::write_brep(tm::with_folded_triangle(tm::filleted_box(), 0.01), dir + "/folded.brep");
+    tm::write_brep(tm::hollow_torus(), dir + "/torus.brep");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "make_models: %s\n", e.what());
     return 1;

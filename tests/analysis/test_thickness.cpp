@@ -372,3 +372,52 @@ TEST(BoxThickness, UnweldedMeshUsesWeldedVertexNormals) {
 
 }  // namespace
 }  // namespace pierce::test
+
+namespace pierce::test {
+namespace {
+
+// CAD mode without a B-rep (ThicknessOptions::tessellation_flags, as vtkPierceThickness gets them
+// from a CAD reader): in a closed solid every ray must leave, so a ray that does not (here through
+// a triangle turned upside down, which the ray enters instead of leaving) is a tessellation
+// artefact, excluded from the statistics and counted; as a mesh the same sample is no_exit.
+TEST(TessellationStatus, NoExitInAClosedCadSolidIsATessellationArtefact) {
+  gen::Mesh box = gen::box({0, 0, 0}, {2, 1, 1}, "box");
+  std::swap(box.triangles[0][1], box.triangles[0][2]);  // closed, but one triangle upside down
+  auto w = make_world({box});
+  ThicknessOptions o;
+  o.per = SampleAt::face;
+  const ThicknessResult mesh = compute_thickness(w->accel, o);
+  o.tessellation_flags = {std::vector<std::uint8_t>(box.triangles.size(), 0)};
+  const ThicknessResult cad = compute_thickness(w->accel, o);
+  ASSERT_EQ(mesh.size(), cad.size());
+  std::size_t no_exit = 0;
+  for (std::size_t i = 0; i < mesh.size(); ++i) {
+    if (mesh.status[i] == ThicknessStatus::no_exit) {
+      ++no_exit;
+      EXPECT_EQ(cad.status[i], ThicknessStatus::tessellation) << i;
+    } else {
+      EXPECT_EQ(cad.status[i], mesh.status[i]) << i;
+      EXPECT_EQ(cad.thickness[i], mesh.thickness[i]) << i;
+    }
+  }
+  EXPECT_GE(no_exit, 2u);  // the turned triangle's own sample and one whose ray meets it
+  EXPECT_EQ(mesh.solids[0].no_exit, no_exit);
+  EXPECT_EQ(mesh.solids[0].tessellation, 0u);
+  EXPECT_EQ(cad.solids[0].no_exit, 0u);
+  EXPECT_EQ(cad.solids[0].tessellation, no_exit);
+  EXPECT_EQ(cad.solids[0].valid, mesh.solids[0].valid);
+  EXPECT_TRUE(cad.brep_faces.empty());
+  // A flag on a triangle: samples starting on it, or whose ray leaves through it, are excluded.
+  o.tessellation_flags[0][4] = 1;  // on the face y = 0
+  const ThicknessResult flagged = compute_thickness(w->accel, o);
+  EXPECT_EQ(flagged.status[4], ThicknessStatus::tessellation);
+  EXPECT_GT(flagged.solids[0].tessellation, cad.solids[0].tessellation);
+  // Flags must match the scene.
+  o.tessellation_flags = {std::vector<std::uint8_t>(3, 0)};
+  EXPECT_THROW(compute_thickness(w->accel, o), std::invalid_argument);
+  o.tessellation_flags = {{}, {}};
+  EXPECT_THROW(compute_thickness(w->accel, o), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace pierce::test

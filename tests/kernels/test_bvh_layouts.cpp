@@ -215,11 +215,16 @@ namespace {
 
 // Both binary builders (Embree's rtcBuildBVH and Pierce's own SAH, which takes over beyond Embree's
 // coordinate range) give trees every kernel is exact on, with boxes that are exact unions.
-TEST(BvhLayouts, EmbreeAndOwnBuilders) {
+// Plates, duplicated faces and a random soup: the builders' test scene.
+Scene builder_scene() {
   auto meshes = gen::stacked_plates(12);
   meshes.push_back(gen::duplicated(gen::box({0.2, 0.2, 0.5}, {0.8, 0.8, 1.5}, "dup"), 4, true));
   meshes.push_back(gen::random_soup(600, 0.3, 9));
-  const Scene scene = gen::to_scene(meshes);
+  return gen::to_scene(meshes);
+}
+
+TEST(BvhLayouts, EmbreeAndOwnBuilders) {
+  const Scene scene = builder_scene();
   const Expected ex(scene, random_rays(scene.bounds(), 60, 8));
   for (const bool embree : {true, false}) {
     SCOPED_TRACE(embree ? "Embree's builder" : "own builder");
@@ -277,10 +282,7 @@ BBoxf exact_subtree_box(const WideBvhf& bvh, NodeRef ref, std::map<std::pair<std
 // The direct 8-wide build (Embree's builder, and Pierce's own binary build collapsed where that is
 // off) at several leaf sizes: exact boxes, every non-degenerate triangle exactly once, exact kernels.
 TEST(BvhLayouts, DirectWideBuild) {
-  auto meshes = gen::stacked_plates(12);
-  meshes.push_back(gen::duplicated(gen::box({0.2, 0.2, 0.5}, {0.8, 0.8, 1.5}, "dup"), 4, true));
-  meshes.push_back(gen::random_soup(600, 0.3, 9));
-  const Scene scene = gen::to_scene(meshes);
+  const Scene scene = builder_scene();
   const Expected ex(scene, random_rays(scene.bounds(), 60, 8));
   for (const bool embree : {true, false}) {
     for (const int max_leaf : {1, 8, 32}) {

@@ -1,14 +1,37 @@
 #include "step_assembly.h"
 
+#include <BRepAlgoAPI_Cut.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
+#include <BRepFilletAPI_MakeFillet.hxx>
+#include <BRepMesh_IncrementalMesh.hxx>
+#include <BRepOffsetAPI_ThruSections.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakePrism.hxx>
+#include <BRepPrimAPI_MakeTorus.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <GC_MakeArcOfCircle.hxx>
+#include <GC_MakeCircle.hxx>
+#include <GC_MakeSegment.hxx>
+#include <Poly_Triangulation.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Solid.hxx>
 #include <STEPCAFControl_Writer.hxx>
 #include <TDataStd_Name.hxx>
 #include <TDocStd_Document.hxx>
 #include <XCAFApp_Application.hxx>
 #include <XCAFDoc_DocumentTool.hxx>
 #include <XCAFDoc_ShapeTool.hxx>
+#include <gp_Ax2.hxx>
 #include <gp_Trsf.hxx>
 
+#include <cmath>
 #include <stdexcept>
 
 namespace pierce::test_models {
@@ -45,6 +68,89 @@ void write_step_assembly(const std::string& path) {
   const bool written = transferred && writer.Write(path.c_str()) == IFSelect_RetDone;
   XCAFApp_Application::GetApplication()->Close(doc);
   if (!written) throw std::runtime_error("OpenCASCADE could not write " + path);
+}
+
+TopoDS_Shape bent_sheet() {
+  auto p = [](double x, double z) { return gp_Pnt(x, 0, z); };
+  const double c = 1.5, ri = 1.0, ro = 1.5, r2 = std::sqrt(0.5);
+  BRepBuilderAPI_MakeWire w;
+  auto seg = [&](gp_Pnt a, gp_Pnt b) { w.Add(BRepBuilderAPI_MakeEdge(GC_MakeSegment(a, b).Value()).Edge()); };
+  auto arc = [&](gp_Pnt a, gp_Pnt m, gp_Pnt b) {
+    w.Add(BRepBuilderAPI_MakeEdge(GC_MakeArcOfCircle(a, m, b).Value()).Edge());
+  };
+  seg(p(c, 0), p(12, 0));
+  seg(p(12, 0), p(12, 0.5));
+  seg(p(12, 0.5), p(c, 0.5));
+  arc(p(c, 0.5), p(c - ri * r2, c - ri * r2), p(0.5, c));
+  seg(p(0.5, c), p(0.5, 12));
+  seg(p(0.5, 12), p(0, 12));
+  seg(p(0, 12), p(0, c));
+  arc(p(0, c), p(c - ro * r2, c - ro * r2), p(c, 0));
+  if (!w.IsDone()) throw std::runtime_error("bent_sheet: profile is not a wire");
+  const TopoDS_Face face = BRepBuilderAPI_MakeFace(w.Wire(), true).Face();
+  return BRepPrimAPI_MakePrism(face, gp_Vec(0, 8, 0)).Shape();
+}
+
+TopoDS_Shape filleted_box() {
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(10, 8, 6).Shape();
+  BRepFilletAPI_MakeFillet f(box);
+  for (TopExp_Explorer ex(box, TopAbs_EDGE); ex.More(); ex.Next()) f.Add(1.0, TopoDS::Edge(ex.Current()));
+  f.Build();
+  if (!f.IsDone()) throw std::runtime_error("filleted_box: fillet failed");
+  return f.Shape();
+}
+
+TopoDS_Shape hollow_torus() {
+  BRep_Builder b;
+  TopoDS_Solid solid;
+  b.MakeSolid(solid);
+  b.Add(solid, BRepPrimAPI_MakeTorus(5.0, 1.0).Shell());
+  b.Add(solid, BRepPrimAPI_MakeTorus(5.0, 0.8).Shell().Reversed());
+  return solid;
+}
+
+TopoDS_Shape thin_blended_plate() {
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(30, 30, 0.3).Shape();
+  BRepFilletAPI_MakeFillet f(box);
+  for (TopExp_Explorer ex(box, TopAbs_EDGE); ex.More(); ex.Next()) f.Add(0.01, TopoDS::Edge(ex.Current()));
+  f.Build();
+  if (!f.IsDone()) throw std::runtime_error("thin_blended_plate: fillet failed");
+  const TopoDS_Shape hole = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(15, 15, -0.3), gp_Dir(0, 0, 1)), 3.75, 0.9).Shape();
+  BRepAlgoAPI_Cut cut(f.Shape(), hole);
+  if (!cut.IsDone()) throw std::runtime_error("thin_blended_plate: hole failed");
+  return cut.Shape();
+}
+
+TopoDS_Shape lofted_solid() {
+  BRepOffsetAPI_ThruSections loft(true, false);
+  const double r[3] = {5, 3, 4}, x[3] = {0, 1, 0}, y[3] = {0, 0, 1};
+  for (int i = 0; i < 3; ++i) {
+    const gp_Ax2 ax(gp_Pnt(x[i], y[i], 10.0 * i), gp_Dir(0, 0, 1));
+    loft.AddWire(BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(GC_MakeCircle(ax, r[i]).Value()).Edge()).Wire());
+  }
+  loft.Build();
+  if (!loft.IsDone()) throw std::runtime_error("lofted_solid: loft failed");
+  return loft.Shape();
+}
+
+TopoDS_Shape with_folded_triangle(const TopoDS_Shape& shape, double deflection) {
+  BRepMesh_IncrementalMesh mesh(shape, deflection, false, 0.5, false);
+  Handle(Poly_Triangulation) best;
+  for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
+    TopLoc_Location loc;
+    const Handle(Poly_Triangulation) t = BRep_Tool::Triangulation(TopoDS::Face(ex.Current()), loc);
+    if (!t.IsNull() && (best.IsNull() || t->NbTriangles() > best->NbTriangles())) best = t;
+  }
+  if (best.IsNull()) throw std::runtime_error("with_folded_triangle: nothing meshed");
+  const Standard_Integer k = best->NbTriangles() / 2 + 1;
+  Standard_Integer a, b, c;
+  best->Triangle(k).Get(a, b, c);
+  best->SetTriangle(k, Poly_Triangle(a, c, b));
+  return shape;
+}
+
+void write_brep(const TopoDS_Shape& shape, const std::string& path) {
+  if (!BRepTools::Write(shape, path.c_str())) throw std::runtime_error("OpenCASCADE could not write " + path);
 }
 
 }  // namespace pierce::test_models

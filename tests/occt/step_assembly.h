@@ -1,16 +1,45 @@
 #pragma once
-// A small STEP assembly with known geometry, written with OpenCASCADE (XDE, names kept), for the
-// CAD loader and reader tests, the CLI tests and the pvbatch tests (the one OCCT model builder of the
-// tests):
+// The tests' one OpenCASCADE model builder: CAD models with known geometry for the CAD loader
+// and reader tests, the CLI tests and the pvbatch tests.
+//
+// A small STEP assembly (XDE, names kept):
 //   plate_assy/plate     box [0,10] x [0,10] x [0,2]
 //   plate_assy/block     box [1,3] x [1,3] x [2,4]    touching the plate's top
 //   plate_assy/block#2   box [6,8] x [1,3] x [2,4]    the same part placed again
 //   plate_assy/clash     box [6,8] x [6,8] x [1.5,3.5] sunk 0.5 into the plate
+//
+// Solids for thickness maps true to the B-rep (fillets, blends, a toroid):
+//   bent_sheet      an L-shaped sheet 0.5 thick: legs along +x and +z (to 12), the bend a quarter
+//                   annulus about the axis x = z = 1.5 (inner radius 1, outer 1.5), 8 wide in y;
+//   filleted_box    box [0,10] x [0,8] x [0,6], all twelve edges filleted with radius 1 (the
+//                   blends meet in spherical corners);
+//   hollow_torus    a tube: torus of major radius 5, outer minor radius 1, inner 0.8 (wall 0.2);
+//   thin_blended_plate  a 30 x 30 x 0.3 sheet whose edges are filleted with radius 0.01, with a
+//                   through hole of radius 3.75 at its centre (sharp edges): on its default
+//                   tessellation the bare mesh reads false thin spots at the blends (0.07 for
+//                   the 0.3 sheet);
+//   lofted_solid    a solid loft (B-spline side, planar caps) through circles of radius 5 at
+//                   z = 0, 3 at (1, 0, 10) and 4 at (0, 1, 20): acute rims at both caps.
+#include <TopoDS_Shape.hxx>
+
 #include <string>
 
 namespace pierce::test_models {
 
 // Throws std::runtime_error when OpenCASCADE cannot write `path`.
 void write_step_assembly(const std::string& path);
+
+TopoDS_Shape bent_sheet();
+TopoDS_Shape filleted_box();
+TopoDS_Shape hollow_torus();
+TopoDS_Shape thin_blended_plate();
+TopoDS_Shape lofted_solid();
+
+// `shape` meshed with `deflection` and one triangle of its most finely meshed face turned
+// upside down (a fold the loader must find); the triangulation is kept in the shape.
+TopoDS_Shape with_folded_triangle(const TopoDS_Shape& shape, double deflection);
+
+// Writes `shape` (with its triangulation, if any) as BREP; throws std::runtime_error on failure.
+void write_brep(const TopoDS_Shape& shape, const std::string& path);
 
 }  // namespace pierce::test_models

@@ -33,7 +33,7 @@ class ThicknessTest(unittest.TestCase):
         self.assertEqual(pierce.thickness_methods(), ["ray", "cone", "sphere"])
         self.assertEqual(pierce.thickness_samplings(), ["vertex", "face"])
         self.assertEqual(pierce.cone_aggregates(), ["shapira", "median"])
-        self.assertEqual(pierce.THICKNESS_STATUS, ("ok", "no_exit", "no_normal"))
+        self.assertEqual(pierce.THICKNESS_STATUS, ("ok", "no_exit", "no_normal", "tessellation"))
         s = scene_of(gen.box((0, 0, 0), (1, 1, 1), "a"))
         for method in pierce.thickness_methods():
             for per in pierce.thickness_samplings():

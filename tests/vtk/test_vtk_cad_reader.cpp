@@ -12,6 +12,8 @@
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
 #include <vtkStringArray.h>
+#include <vtkTable.h>
+#include <vtkUnsignedCharArray.h>
 
 #include "step_assembly.h"
 #include "vtkPierceCADReader.h"
@@ -82,6 +84,46 @@ TEST(VtkCadReader, ThicknessOfTheAssemblyIsEachPartsOwnWidth) {
   vtkDataArray* tb = blocks["plate_assy/block"]->GetCellData()->GetArray("Thickness");
   EXPECT_NEAR(tb->GetRange()[0], 2.0, 1e-6);
   EXPECT_NEAR(tb->GetRange()[1], 2.0, 1e-6);
+}
+
+// The reader marks folded triangles (none here, every box meshes cleanly); the thickness filter
+// gives samples that start on or leave through a marked triangle the status tessellation (3), leaves them out of
+// the statistics and counts them in the table's Tessellation column.
+TEST(VtkCadReader, FoldedTrianglesGiveTheTessellationStatus) {
+  auto reader = vtkSmartPointer<vtkPierceCADReader>::New();
+  reader->SetFileName(assembly_path().c_str());
+  reader->Update();
+  auto blocks = blocks_by_name(reader->GetOutput());
+  vtkPolyData* plate = blocks["plate_assy/plate"];
+  vtkDataArray* folded = plate->GetCellData()->GetArray("TessellationFolded");
+  ASSERT_NE(folded, nullptr);
+  ASSERT_EQ(folded->GetNumberOfTuples(), plate->GetNumberOfCells());
+  EXPECT_EQ(folded->GetRange()[1], 0.0);
+  auto copy = vtkSmartPointer<vtkPolyData>::New();
+  copy->DeepCopy(plate);
+  vtkDataArray* marks = copy->GetCellData()->GetArray("TessellationFolded");
+  marks->SetTuple1(0, 1);
+  auto f = vtkSmartPointer<vtkPierceThickness>::New();
+  f->SetInputData(copy);
+  f->SetSampleAt(vtkPierceThickness::CELLS);
+  f->Update();
+  vtkPolyData* out = vtkPolyData::SafeDownCast(f->GetOutputDataObject(0));
+  ASSERT_NE(out, nullptr);
+  vtkDataArray* status = out->GetCellData()->GetArray("ThicknessStatus");
+  vtkDataArray* t = out->GetCellData()->GetArray("Thickness");
+  ASSERT_NE(status, nullptr);
+  EXPECT_EQ(status->GetTuple1(0), 3.0);
+  EXPECT_TRUE(std::isnan(t->GetTuple1(0)));
+  vtkTable* stats = f->GetStatisticsOutput();
+  ASSERT_NE(stats, nullptr);
+  vtkAbstractArray* tess = stats->GetColumnByName("Tessellation");
+  ASSERT_NE(tess, nullptr);
+  // The marked cell, and any whose ray leaves through it (the opposite face's).
+  int marked = 0;
+  for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c) marked += status->GetTuple1(c) == 3.0;
+  EXPECT_GE(marked, 1);
+  EXPECT_EQ(tess->GetVariantValue(0).ToInt(), marked);
+  EXPECT_EQ(stats->GetColumnByName("Valid")->GetVariantValue(0).ToInt(), plate->GetNumberOfCells() - marked);
 }
 
 TEST(VtkCadReader, MissingAndMalformedFilesAreErrors) {

@@ -30,6 +30,26 @@ namespace pierce_vtk {
 
 namespace pa = pierce::analysis;
 
+std::vector<std::vector<std::uint8_t>> TessellationFlags(const Surfaces& surfaces) {
+  std::vector<std::vector<std::uint8_t>> flags(surfaces.scene.geometries().size());
+  bool any = false;
+  for (const Solid& solid : surfaces.solids) {
+    vtkDataArray* folded = solid.surface->GetCellData()->GetArray("TessellationFolded");
+    if (!folded || folded->GetNumberOfComponents() != 1) continue;
+    auto& f = flags[solid.id];
+    const std::size_t n = surfaces.scene.geometry(solid.id).triangles.size();
+    if (folded->GetNumberOfTuples() != solid.surface->GetNumberOfCells()) continue;
+    f.assign(n, 0);
+    for (vtkIdType c = 0; c < folded->GetNumberOfTuples(); ++c) {
+      const std::uint32_t prim = PrimOfCell(solid, c);
+      if (prim < n) f[prim] = folded->GetTuple1(c) != 0;
+    }
+    any = true;
+  }
+  if (!any) flags.clear();
+  return flags;
+}
+
 void AttachThickness(const pa::ThicknessResult& result, Surfaces& surfaces) {
   const bool per_cell = result.per == pa::SampleAt::face;
   struct Arrays {
@@ -110,6 +130,7 @@ void WriteThicknessTable(const std::vector<pa::SolidThickness>& solids, const st
   auto no_exit = column(vtkSmartPointer<vtkIdTypeArray>::New(), "NoExit");
   auto no_normal = column(vtkSmartPointer<vtkIdTypeArray>::New(), "NoNormal");
   auto thin = column(vtkSmartPointer<vtkIdTypeArray>::New(), "Thin");
+  auto tessellation = column(vtkSmartPointer<vtkIdTypeArray>::New(), "Tessellation");
   auto min = column(vtkSmartPointer<vtkDoubleArray>::New(), "Min");
   auto max = column(vtkSmartPointer<vtkDoubleArray>::New(), "Max");
   auto mean = column(vtkSmartPointer<vtkDoubleArray>::New(), "Mean");
@@ -128,6 +149,7 @@ void WriteThicknessTable(const std::vector<pa::SolidThickness>& solids, const st
     no_exit->InsertNextValue(static_cast<vtkIdType>(s.no_exit));
     no_normal->InsertNextValue(static_cast<vtkIdType>(s.no_normal));
     thin->InsertNextValue(static_cast<vtkIdType>(s.thin));
+    tessellation->InsertNextValue(static_cast<vtkIdType>(s.tessellation));
     const bool any = s.summary.count > 0;
     min->InsertNextValue(any ? s.summary.min : nan);
     max->InsertNextValue(any ? s.summary.max : nan);
@@ -298,6 +320,7 @@ std::vector<pa::SolidThickness> GatherThicknessStatistics(const Surfaces& surfac
     const auto status = static_cast<pa::ThicknessStatus>(int(all[i + 5]));
     st.no_exit += status == pa::ThicknessStatus::no_exit;
     st.no_normal += status == pa::ThicknessStatus::no_normal;
+    st.tessellation += status == pa::ThicknessStatus::tessellation;
     st.thin += all[i + 6] != 0;
     if (std::isfinite(all[i + 4])) values[g].push_back(all[i + 4]);
   }

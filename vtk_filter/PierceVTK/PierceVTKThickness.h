@@ -14,6 +14,11 @@ namespace pierce_vtk {
 class Distribution;
 struct Surfaces;
 
+// Per scene geometry, the input's `TessellationFolded` cell array (vtkPierceCADReader: triangles
+// where the CAD tessellation folds), for ThicknessOptions::tessellation_flags; empty when no
+// solid has one.
+std::vector<std::vector<std::uint8_t>> TessellationFlags(const Surfaces& surfaces);
+
 // Point (per vertex) or cell (per face) arrays Thickness, Thin, ThicknessStatus, SolidId on each
 // solid's surface; Thickness becomes the active scalars.
 void AttachThickness(const pierce::analysis::ThicknessResult& result, Surfaces& surfaces);

@@ -138,6 +138,7 @@ int vtkPierceThickness::RequestData(
   const pierce_vtk::Surfaces& surfaces = run.surfaces;
   pierce::analysis::ThicknessOptions options = ThicknessOptionsOf(*this);
   const bool perCell = this->SampleAt == CELLS;
+  options.tessellation_flags = pierce_vtk::TessellationFlags(surfaces);
   pierce_vtk::VertexOwners owners;
   if (surfaces.distributed)
   {

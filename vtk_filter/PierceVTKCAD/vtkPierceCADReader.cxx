@@ -18,6 +18,7 @@
 #include <vtkSmartPointer.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkStringArray.h>
+#include <vtkUnsignedCharArray.h>
 
 #include "pierce/io/cad_io.h"
 
@@ -48,10 +49,21 @@ vtkSmartPointer<vtkPolyData> ToPolyData(const pierce::CadSolid& solid, int solid
   ids->SetName("SolidId");
   ids->SetNumberOfValues(static_cast<vtkIdType>(solid.triangles.size()));
   ids->Fill(solidId);
+  // 1 where the tessellation folds against the B-rep (cad_io.h): vtkPierceThickness gives the
+  // samples there status tessellation.
+  auto folded = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  folded->SetName("TessellationFolded");
+  folded->SetNumberOfValues(static_cast<vtkIdType>(solid.triangles.size()));
+  for (std::size_t t = 0; t < solid.triangles.size(); ++t)
+  {
+    const bool f = t < solid.link.flags.size() && (solid.link.flags[t] & pierce::kTriangleFolded) != 0;
+    folded->SetValue(static_cast<vtkIdType>(t), f ? 1 : 0);
+  }
   auto poly = vtkSmartPointer<vtkPolyData>::New();
   poly->SetPoints(points);
   poly->SetPolys(triangles);
   poly->GetCellData()->AddArray(ids);
+  poly->GetCellData()->AddArray(folded);
   return poly;
 }
 

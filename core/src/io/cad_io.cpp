@@ -9,6 +9,8 @@
 
 #include <BRepBndLib.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
+#include <IMeshTools_Parameters.hxx>
+#include <gp_Pnt2d.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
@@ -55,6 +57,7 @@
 #include <tuple>
 #include <numbers>
 
+#include "cad_faces.h"
 #include "pierce/error.h"
 
 namespace pierce {
@@ -101,7 +104,11 @@ std::string status_text(IFSelect_ReturnStatus s) {
 // Collects solids as meshes, with the problems met on the way.
 class Collector {
  public:
-  Collector(std::string path, std::string stem) : path_(std::move(path)), stem_(std::move(stem)) {}
+  Collector(std::string path, std::string stem, const TessellationOptions& opts)
+      : path_(std::move(path)), stem_(std::move(stem)), opts_(opts) {}
+
+  // The tessellation the shapes were meshed with (mesh_all), for meshing folded solids again.
+  void set_tessellation(double deflection, double angle_rad) { deflection_ = deflection, angle_ = angle_rad; }
 
   // `proto` is the unlocated shape whose sub-shapes may carry names (XDE); `loc` places it.
   void add(const TopoDS_Shape& proto, const TopLoc_Location& loc, const std::string& name,
@@ -146,6 +153,79 @@ class Collector {
   void mesh(const TopoDS_Shape& shape, const std::string& name, bool is_solid) {
     CadSolid s;
     s.name = name;
+    std::size_t unmeshed = collect(shape, s);
+    TessellationCheck check;
+    check.faces = s.link.faces->faces.size();
+    check.folded_found = count_flag(s, kTriangleFolded);
+    {
+      std::vector<std::uint8_t> face_folded(check.faces, 0);
+      for (std::size_t t = 0; t < s.triangles.size(); ++t)
+        if (s.link.flags[t] & kTriangleFolded) face_folded[s.link.face[t]] = 1;
+      for (auto f : face_folded) check.faces_folded += f;
+    }
+    // A fold is an artefact of the mesher (typically at small blends): the solid is meshed
+    // again with a quarter of the deflection and half the angle, minimum sizes adjusted to the
+    // edges, until no fold is left or the rounds are used up.
+    double deflection = deflection_, angle = angle_;
+    while (count_flag(s, kTriangleFolded) > 0 && check.remesh_rounds < opts_.fold_remesh_rounds) {
+      deflection *= 0.25;
+      angle = std::max(0.5 * angle, 2.0 * std::numbers::pi / 180.0);
+      BRepTools::Clean(shape);
+      IMeshTools_Parameters p;
+      p.Deflection = deflection;
+      p.Angle = angle;
+      p.Relative = Standard_False;
+      p.InParallel = Standard_True;
+      p.AdjustMinSize = Standard_True;
+      p.ControlSurfaceDeflection = Standard_True;
+      BRepMesh_IncrementalMesh again(shape, p);
+      ++check.remesh_rounds;
+      check.faces_remeshed += check.faces;
+      s = CadSolid{};
+      s.name = name;
+      unmeshed = collect(shape, s);
+    }
+    check.final_deflection = deflection;
+    if (unmeshed > 0) warn(name + ": " + std::to_string(unmeshed) + " faces could not be tessellated, skipped");
+    if (s.triangles.empty()) {
+      warn(name + ": nothing to tessellate, skipped");
+      return;
+    }
+    weld(s);
+    if (is_solid && signed_volume(s) < 0) {
+      for (Tri& t : s.triangles) std::swap(t[1], t[2]);
+      for (auto& uv : s.link.uv) std::swap(uv[2], uv[4]), std::swap(uv[3], uv[5]);
+      for (CadFaces::Face& f : faces_of(s)) f.sign = -f.sign;
+      warn(name + ": solid was inside out, turned right side out");
+    }
+    check.folded = count_flag(s, kTriangleFolded);
+    check.slivers = count_flag(s, kTriangleSliver);
+    s.link.check = check;
+    if (check.folded_found > 0)
+      warn(name + ": " + std::to_string(check.folded_found) + " folded triangles on " +
+           std::to_string(check.faces_folded) + " faces" +
+           (check.remesh_rounds > 0 ? ", meshed again " + std::to_string(check.remesh_rounds) + " times" : "") +
+           (check.folded > 0 ? "; " + std::to_string(check.folded) + " left, flagged (thickness status tessellation)"
+                             : "; none left"));
+    solids.push_back(std::move(s));
+  }
+
+  static std::size_t count_flag(const CadSolid& s, std::uint8_t flag) {
+    std::size_t n = 0;
+    for (auto f : s.link.flags) n += (f & flag) != 0;
+    return n;
+  }
+
+  static std::vector<CadFaces::Face>& faces_of(CadSolid& s) {
+    return const_cast<CadFaces&>(*s.link.faces).faces;  // still owned by this solid alone
+  }
+
+  // Appends every face's triangles to `s` with their link to the face, checked against it;
+  // returns the number of faces without triangulation.
+  std::size_t collect(const TopoDS_Shape& shape, CadSolid& s) {
+    auto faces = std::make_shared<CadFaces>();
+    faces->shape = shape;
+    s.link.faces = faces;
     std::size_t unmeshed = 0;
     for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
       const TopoDS_Face& face = TopoDS::Face(ex.Current());
@@ -155,33 +235,77 @@ class Collector {
         ++unmeshed;
         continue;
       }
+      // Triangles follow the surface's parametric orientation; a reversed face's outside is the
+      // other side. A mirroring placement flips every face alike (fixed below by the volume).
+      const bool reversed = face.Orientation() == TopAbs_REVERSED;
+      CadFaces::Face f;
+      f.face = face;
+      f.surface = BRep_Tool::Surface(face);
+      f.sign = reversed ? -1.0 : 1.0;
+      BRepTools::UVBounds(face, f.umin, f.umax, f.vmin, f.vmax);
+      const auto face_index = std::uint32_t(faces->faces.size());
+      const bool has_uv = tri->HasUVNodes() && !f.surface.IsNull();
+      faces->faces.push_back(f);
       const gp_Trsf tr = floc.Transformation();
       const auto base = std::uint32_t(s.vertices.size());
       for (Standard_Integer i = 1; i <= tri->NbNodes(); ++i) {
         const gp_Pnt p = tri->Node(i).Transformed(tr);
         s.vertices.push_back({p.X(), p.Y(), p.Z()});
       }
-      // Triangles follow the surface's parametric orientation; a reversed face's outside is the
-      // other side. A mirroring placement flips every face alike (fixed below by the volume).
-      const bool reversed = face.Orientation() == TopAbs_REVERSED;
       for (Standard_Integer i = 1; i <= tri->NbTriangles(); ++i) {
         Standard_Integer a, b, c;
         tri->Triangle(i).Get(a, b, c);
         if (reversed) std::swap(b, c);
-        s.triangles.push_back({base + std::uint32_t(a - 1), base + std::uint32_t(b - 1), base + std::uint32_t(c - 1)});
+        const Tri t{base + std::uint32_t(a - 1), base + std::uint32_t(b - 1), base + std::uint32_t(c - 1)};
+        s.triangles.push_back(t);
+        std::array<double, 6> uv{};
+        std::uint8_t flags = 0;
+        if (has_uv) {
+          const Standard_Integer n[3] = {a, b, c};
+          for (int k = 0; k < 3; ++k) {
+            const gp_Pnt2d q = tri->UVNode(n[k]);
+            uv[std::size_t(2 * k)] = q.X();
+            uv[std::size_t(2 * k + 1)] = q.Y();
+          }
+          flags = check_triangle(f, s.vertices[t[0]], s.vertices[t[1]], s.vertices[t[2]], uv);
+        }
+        s.link.face.push_back(face_index);
+        s.link.uv.push_back(uv);
+        s.link.flags.push_back(flags);
       }
     }
-    if (unmeshed > 0) warn(name + ": " + std::to_string(unmeshed) + " faces could not be tessellated, skipped");
-    if (s.triangles.empty()) {
-      warn(name + ": nothing to tessellate, skipped");
-      return;
+    return unmeshed;
+  }
+
+  // The triangle against its face: folded when its normal and the face's outward normal at the
+  // triangle's centre (UV mean of its corners) make more than 90 degrees; a sliver when its
+  // height is below 1e-6 of its longest edge.
+  static std::uint8_t check_triangle(const CadFaces::Face& f, Vec3d a, Vec3d b, Vec3d c,
+                                     const std::array<double, 6>& uv) {
+    std::uint8_t flags = 0;
+    const Vec3d n = cross(b - a, c - a);
+    const double longest = std::max({length(b - a), length(c - b), length(a - c)});
+    const double area2 = length(n);
+    if (!(area2 > 1e-6 * longest * longest)) flags |= kTriangleSliver;
+    if (!(area2 > 0)) return flags;
+    auto normal_at = [&](double u, double v) {
+      gp_Pnt p;
+      gp_Vec du, dv;
+      f.surface->D1(u, v, p, du, dv);
+      const gp_Vec m = du.Crossed(dv) * f.sign;
+      return Vec3d{m.X(), m.Y(), m.Z()};
+    };
+    Vec3d sn = normal_at((uv[0] + uv[2] + uv[4]) / 3.0, (uv[1] + uv[3] + uv[5]) / 3.0);
+    if (!(length(sn) > 0)) {  // a singular point (pole, apex): the corners' normals instead
+      sn = Vec3d{};
+      for (int k = 0; k < 3; ++k) {
+        const Vec3d m = normal_at(uv[std::size_t(2 * k)], uv[std::size_t(2 * k + 1)]);
+        const double l = length(m);
+        if (l > 0) sn = sn + m * (1.0 / l);
+      }
     }
-    weld(s);
-    if (is_solid && signed_volume(s) < 0) {
-      for (Tri& t : s.triangles) std::swap(t[1], t[2]);
-      warn(name + ": solid was inside out, turned right side out");
-    }
-    solids.push_back(std::move(s));
+    if (length(sn) > 0 && dot(sn, n) < 0) flags |= kTriangleFolded;
+    return flags;
   }
 
   // Faces are meshed separately: nodes on a shared edge (and on a periodic face's seam, whose two
@@ -227,12 +351,21 @@ class Collector {
       index[i] = found;
     }
     std::vector<Tri> tris;
-    for (Tri t : s.triangles) {
+    CadLink link;
+    link.faces = s.link.faces;
+    for (std::size_t i = 0; i < s.triangles.size(); ++i) {
+      Tri t = s.triangles[i];
       for (auto& k : t) k = index[k];
-      if (t[0] != t[1] && t[1] != t[2] && t[2] != t[0]) tris.push_back(t);
+      if (t[0] != t[1] && t[1] != t[2] && t[2] != t[0]) {
+        tris.push_back(t);
+        link.face.push_back(s.link.face[i]);
+        link.uv.push_back(s.link.uv[i]);
+        link.flags.push_back(s.link.flags[i]);
+      }
     }
     s.vertices = std::move(kept);
     s.triangles = std::move(tris);
+    s.link = std::move(link);
   }
 
   static double signed_volume(const CadSolid& s) {
@@ -246,6 +379,8 @@ class Collector {
   }
 
   std::string path_, stem_;
+  TessellationOptions opts_;
+  double deflection_ = 0, angle_ = 0;
 };
 
 // Walks an XDE assembly tree: assemblies recurse with their components' placements, parts are
@@ -278,10 +413,12 @@ double auto_deflection(const std::vector<TopoDS_Shape>& shapes) {
   return d > 0 ? 1e-3 * d : 0.1;
 }
 
-void mesh_all(const std::vector<TopoDS_Shape>& shapes, const TessellationOptions& opts, CadModel& model) {
+void mesh_all(const std::vector<TopoDS_Shape>& shapes, const TessellationOptions& opts, CadModel& model,
+              Collector& out) {
   model.linear_deflection = opts.linear_deflection > 0 ? opts.linear_deflection : auto_deflection(shapes);
   const double angle = opts.angular_deflection_deg * std::numbers::pi / 180.0;
   for (const TopoDS_Shape& s : shapes) BRepMesh_IncrementalMesh(s, model.linear_deflection, false, angle, true);
+  out.set_tessellation(model.linear_deflection, angle);
 }
 
 // Load-time failures of individual entities ("skipped"), from the reader's check list.
@@ -347,7 +484,7 @@ void load_xde(const std::string& path, const char* what, const TessellationOptio
   tool->GetFreeShapes(free);
   std::vector<TopoDS_Shape> shapes;
   for (Standard_Integer i = 1; i <= free.Length(); ++i) shapes.push_back(XCAFDoc_ShapeTool::GetShape(free.Value(i)));
-  mesh_all(shapes, opts, model);
+  mesh_all(shapes, opts, model, out);
   for (Standard_Integer i = 1; i <= free.Length(); ++i) walk(tool, free.Value(i), TopLoc_Location(), "", out);
 }
 
@@ -355,7 +492,7 @@ void load_brep(const std::string& path, const TessellationOptions& opts, CadMode
   TopoDS_Shape shape;
   BRep_Builder builder;
   if (!BRepTools::Read(shape, path.c_str(), builder) || shape.IsNull()) fail(path, "not a readable BREP file");
-  mesh_all({shape}, opts, model);
+  mesh_all({shape}, opts, model, out);
   out.add(shape, TopLoc_Location(), "", Handle(XCAFDoc_ShapeTool)(), TDF_Label());
 }
 
@@ -442,6 +579,8 @@ CadModel load_cad_file(const std::string& path, const TessellationOptions& opts)
     throw InputError("tessellation: linear deflection must be a positive number (0 for automatic)");
   if (!(opts.angular_deflection_deg > 0 && opts.angular_deflection_deg < 180))
     throw InputError("tessellation: angular deflection must be in (0, 180) degrees");
+  if (opts.fold_remesh_rounds < 0 || opts.fold_remesh_rounds > 10)
+    throw InputError("tessellation: fold remesh rounds must be in 0..10");
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) fail(path, "cannot open file (no such file)");
   if (!std::filesystem::is_regular_file(path, ec)) fail(path, "cannot read: not a regular file");
@@ -452,7 +591,7 @@ CadModel load_cad_file(const std::string& path, const TessellationOptions& opts)
   }
   CadModel model;
   model.units = fmt == CadFormat::brep ? "model units" : "mm";
-  Collector out(path, std::filesystem::path(path).stem().string());
+  Collector out(path, std::filesystem::path(path).stem().string(), opts);
   {
     const std::lock_guard<std::mutex> lock(load_mutex());
     const CrashToException crash_guard;

@@ -18,7 +18,10 @@ std::vector<LoadedFile> add_any_model(Scene& scene, const std::vector<std::strin
     f.first_geometry = std::uint32_t(scene.geometries().size());
     if (is_cad_file(path)) {
       CadModel m = load_cad_file(path, opts);
-      for (CadSolid& s : m.solids) scene.add_mesh(std::move(s.vertices), std::move(s.triangles), std::move(s.name), path);
+      for (CadSolid& s : m.solids) {
+        scene.add_mesh(std::move(s.vertices), std::move(s.triangles), std::move(s.name), path);
+        f.cad.push_back(std::move(s.link));
+      }
       f.units = m.units;
       f.linear_deflection = m.linear_deflection;
       f.warnings = std::move(m.warnings);

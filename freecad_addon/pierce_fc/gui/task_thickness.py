@@ -1,6 +1,8 @@
 """Task panel: thickness map of the selected solids."""
 import math
 
+import FreeCAD
+
 from .. import thickness_map
 from ..locate import PierceUnavailable
 from ..thickness_map import ThicknessOptions
@@ -60,10 +62,48 @@ class ThicknessPanel(PanelBase):
     def build_results(self, layout):
         self.legend = Legend()
         layout.addWidget(self.legend)
+        # Caliper: while on, a point picked on a face reads the wall there on the exact B-rep.
+        self.caliper_button = QtWidgets.QPushButton("Caliper: pick points on faces")
+        self.caliper_button.setCheckable(True)
+        self.caliper_button.setToolTip("While on, click a point on a face in the 3D view to read the wall "
+                                       "thickness there (exact B-rep); readings go to the summary below")
+        self.caliper_button.toggled.connect(self.set_caliper)
+        self._caliper_observer = None
+        layout.addWidget(self.caliper_button)
         self.summary = QtWidgets.QPlainTextEdit()
         self.summary.setReadOnly(True)
         self.summary.setMinimumHeight(100)
         layout.addWidget(self.summary)
+
+    def set_caliper(self, on):
+        import FreeCADGui
+        if on and self._caliper_observer is None:
+            self._caliper_observer = _CaliperObserver(self)
+            FreeCADGui.Selection.addObserver(self._caliper_observer)
+        elif not on and self._caliper_observer is not None:
+            FreeCADGui.Selection.removeObserver(self._caliper_observer)
+            self._caliper_observer = None
+
+    def caliper_pick(self, doc_name, obj_name, sub, pnt):
+        """One caliper reading (the selection observer calls this)."""
+        doc = FreeCAD.getDocument(doc_name)
+        obj = doc.getObject(obj_name) if doc else None
+        if obj is None or not sub or not hasattr(obj, "Shape"):
+            return None
+        try:
+            reading = thickness_map.caliper(obj, sub, pnt)
+        except Exception as e:  # a bad pick is a message, never a crash of the panel
+            self.set_message(str(e), error=True)
+            return None
+        text = reading.text()
+        self.summary.appendPlainText(text)
+        self.report(text)
+        self.set_message(text)
+        return reading
+
+    def reject(self):
+        self.set_caliper(False)  # the observer goes with the panel
+        return super().reject()
 
     def options(self):
         auto = self.auto_range.isChecked()
@@ -95,3 +135,11 @@ class ThicknessPanel(PanelBase):
         mins = [s.stats.summary.min for s in run.solids if s.stats.summary.count]
         self.set_message("Thickness of %d solid(s): minimum %.4g mm. Results: '%s' in the tree." % (
             len(run.solids), min(mins) if mins else math.nan, run.group.Label if run.group else "-"))
+
+
+class _CaliperObserver:
+    def __init__(self, panel):
+        self.panel = panel
+
+    def addSelection(self, doc, obj, sub, pnt):
+        self.panel.caliper_pick(doc, obj, sub, pnt)

@@ -15,6 +15,24 @@
 //
 // Open meshes: a ray that finds no exit (or none within max_distance) gives NaN with status
 // no_exit, never a number.
+//
+// CAD input (ThicknessOptions::exact covers the geometry, see exact_surface.h): every sample
+// starts on the exact B-rep face, at the projection of the mesh sample onto the face of its
+// triangle, and is traced along the face's exact inward normal there. A vertex on an edge
+// between faces is sampled once per face whose inward normal enters the material there (each
+// sample a millionth of its triangle into its face, so that its ray does not run along the
+// neighbouring face) and keeps the smaller thickness (brep_faces says how many); at an acute
+// edge, where each face's ray would leave at once, once along the mean of the faces' normals.
+// The exit found on the mesh is refined on the exact face of the triangle it crosses (Newton
+// steps from the triangle's UV); where that gives no answer inside the face's trim, where the
+// ray meets the face at a glancing angle, or where the mesh has no exit in a closed solid, the
+// whole B-rep is intersected (ExactSurfaces::first_crossing). So ray and cone rays measure the
+// B-rep, not the tessellation (the sphere method's ball is still shrunk against the mesh, from
+// the mesh sample along the exact normal). A sample that starts on a folded triangle, first
+// meets or leaves through one, or finds no exit in a closed solid (max_distance infinite)
+// where the B-rep has none either, or whose projection fails, gets status `tessellation` and
+// no thickness: it is an artefact of the mesh, counted per solid and left out of the
+// statistics. Meshes (STL, OBJ, OFF, PLY) are measured as before, bit for bit.
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -23,6 +41,7 @@
 #include <utility>
 #include <vector>
 
+#include "pierce/analysis/exact_surface.h"
 #include "pierce/analysis/progress.h"
 #include "pierce/analysis/statistics.h"
 #include "pierce/kernel.h"
@@ -69,18 +88,29 @@ struct ThicknessOptions {
   std::vector<std::vector<std::uint8_t>> sample_mask;
   std::vector<double> percentiles = kDefaultPercentiles;
   int histogram_bins = 20;
+  // The exact surfaces behind CAD geometries (not owned; must outlive the call), or null.
+  const ExactSurfaces* exact = nullptr;
+  // Triangles flagged as tessellation artefacts where no exact surfaces are at hand (e.g. the
+  // `Folded` cell array of a CAD reader in VTK): empty, or one entry per geometry, each empty or
+  // one per triangle (nonzero: folded). A geometry with flags is treated as CAD input for the
+  // `tessellation` status (without B-rep projection or refinement).
+  std::vector<std::vector<std::uint8_t>> tessellation_flags;
 };
 
 enum class ThicknessStatus : std::uint8_t {
   ok = 0,
   no_exit = 1,    // the ray (or most cone rays) left through a hole or went beyond max_distance
   no_normal = 2,  // degenerate face or vertex without a usable normal
+  tessellation = 3,  // CAD input: an artefact of the tessellation (see above), no thickness
 };
 
 struct SolidThickness {
   std::uint32_t geom = 0;
   std::string name;
   std::size_t elements = 0, valid = 0, no_exit = 0, no_normal = 0, thin = 0;
+  std::size_t tessellation = 0;  // excluded as tessellation artefacts (CAD input)
+  std::size_t edge_samples = 0;  // CAD vertices on an edge: the smaller of several faces' samples
+  bool exact = false;            // sampled on the exact B-rep (CAD input with exact surfaces)
   Summary summary;  // over the valid thicknesses
 };
 
@@ -95,6 +125,10 @@ struct ThicknessResult {
   std::vector<double> thickness;       // NaN where there is none
   std::vector<std::uint8_t> thin;      // 1 where thickness < min_thickness
   std::vector<ThicknessStatus> status;
+  // B-rep faces sampled at the element: 0 for meshes, 1 on a face, 2 or more for a CAD vertex on
+  // an edge (the thickness, point and normal are those of its smallest sample). Empty when no
+  // sampled geometry is covered by ThicknessOptions::exact.
+  std::vector<std::uint8_t> brep_faces;
   std::vector<SolidThickness> solids;  // per-solid statistics
   bool completed = true;               // false if cancelled (then the arrays are partial)
 
@@ -128,6 +162,16 @@ struct ThicknessAlong {
 ThicknessAlong thickness_along(const Accel& accel, const std::vector<std::uint32_t>& geoms,
                                const std::vector<Ray>& rays, double max_distance, double tie_tolerance_rel = 1e-6,
                                KernelKind kernel = KernelKind::queue, const Progress& progress = {});
+
+// Thickness at given points (`pierce thickness --at`): each point is projected onto the boundary
+// of its solid (the closest point of its triangles; on CAD input then onto the exact face) and
+// measured there like a face sample with `opts` (method, max distance, exact surfaces...),
+// along the given outward normal when one is given (nonzero) and the surface's otherwise.
+// One entry per point, in input order; `element` is the triangle the point was projected onto.
+// Throws std::invalid_argument for sizes that differ or a solid id not in the scene.
+ThicknessResult thickness_at(const Accel& accel, const std::vector<std::uint32_t>& solids,
+                             const std::vector<Vec3d>& points, const std::vector<Vec3d>& normals,
+                             const ThicknessOptions& opts = {}, const Progress& progress = {});
 
 // Whether compute_thickness uses origin offsets with these options.
 bool uses_origin_offsets(const ThicknessOptions& opts);
@@ -171,6 +215,7 @@ struct pierce::EnumNames<pierce::analysis::ThicknessStatus> {
   static constexpr std::string_view what = "thickness status";
   static constexpr NamedValue<analysis::ThicknessStatus> values[] = {{analysis::ThicknessStatus::ok, "ok"},
                                                                      {analysis::ThicknessStatus::no_exit, "no_exit"},
-                                                                     {analysis::ThicknessStatus::no_normal, "no_normal"}};
+                                                                     {analysis::ThicknessStatus::no_normal, "no_normal"},
+                                                                     {analysis::ThicknessStatus::tessellation, "tessellation"}};
 };
 

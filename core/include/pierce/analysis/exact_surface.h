@@ -1,0 +1,53 @@
+#pragma once
+// The exact surfaces behind a tessellated model, as thickness analyses ask them: for CAD input
+// (STEP, IGES, BREP) every triangle lies on one B-rep face and knows the (u, v) of its corners
+// there. The core knows this interface only; the OpenCASCADE implementation is in pierce_cad
+// (pierce/io/cad_surfaces.h), so pierce_core stays free of OpenCASCADE.
+#include <cstdint>
+#include <optional>
+#include <span>
+
+#include "pierce/vec3.h"
+
+namespace pierce::analysis {
+
+struct SurfacePoint {
+  Vec3d point;   // on the exact surface
+  Vec3d normal;  // unit, outward of the solid
+};
+
+struct SurfaceCrossing {
+  double t;      // along the line
+  Vec3d normal;  // unit outward normal of the face there (zero where undefined)
+};
+
+// Every call is const and may run on many threads at once.
+class ExactSurfaces {
+ public:
+  virtual ~ExactSurfaces() = default;
+
+  // Whether geometry `geom` is a tessellated exact model known here (false for meshes).
+  virtual bool covers(std::uint32_t geom) const = 0;
+  // The exact face triangle `prim` lies on (an index within its geometry).
+  virtual std::uint32_t face_of(std::uint32_t geom, std::uint32_t prim) const = 0;
+  // Per triangle, nonzero where the tessellation folds there (see cad_io.h, TriangleFlag).
+  virtual std::span<const std::uint8_t> folded(std::uint32_t geom) const = 0;
+  // The point of the face of triangle `prim` nearest to `p`, by Newton steps on the surface from
+  // the triangle's (u, v) at barycentrics (b1, b2) of its corners 1 and 2, with the face's unit
+  // outward normal there (zero where it is undefined: a singular point such as a cone's apex).
+  // nullopt when no foot point is found.
+  virtual std::optional<SurfacePoint> project(std::uint32_t geom, std::uint32_t prim, double b1, double b2,
+                                              Vec3d p) const = 0;
+  // The t > 0 where the line org + t dir crosses the face of triangle `prim`, by Newton steps on
+  // (u, v, t) from the triangle's (u, v) at barycentrics (b1, b2), the crossing nearest to that
+  // start; nullopt when there is none near it.
+  virtual std::optional<SurfaceCrossing> intersect(std::uint32_t geom, std::uint32_t prim, double b1, double b2,
+                                                   Vec3d org, Vec3d dir) const = 0;
+  // The fallback when the mesh gives no answer (no exit found, or the refinement failed): the
+  // smallest t > tmin where the line org + t dir (dir unit) crosses the exact boundary of
+  // geometry `geom`, from an exact intersection with every face; nullopt when there is none.
+  // Much slower than intersect(), and serialised: for the rare samples that need it.
+  virtual std::optional<double> first_crossing(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin) const = 0;
+};
+
+}  // namespace pierce::analysis

@@ -1,0 +1,45 @@
+#pragma once
+// The exact B-rep surfaces behind CAD geometries (analysis::ExactSurfaces through OpenCASCADE),
+// for thickness maps true to the CAD model (pierce/analysis/thickness.h, ThicknessOptions::exact).
+#include <memory>
+#include <vector>
+
+#include "pierce/analysis/exact_surface.h"
+#include "pierce/io/model_io.h"
+
+namespace pierce {
+
+class CadSurfaces final : public analysis::ExactSurfaces {
+ public:
+  // links[g]: the CAD link of geometry g of the scene (empty for meshes). Each link's triangles
+  // are those of geometry g, in its order.
+  explicit CadSurfaces(std::vector<CadLink> links);
+
+  // True if any geometry is covered.
+  bool any() const;
+  const CadLink& link(std::uint32_t geom) const { return links_.at(geom); }
+
+  bool covers(std::uint32_t geom) const override;
+  std::uint32_t face_of(std::uint32_t geom, std::uint32_t prim) const override;
+  std::span<const std::uint8_t> folded(std::uint32_t geom) const override;
+  std::optional<analysis::SurfacePoint> project(std::uint32_t geom, std::uint32_t prim, double b1, double b2,
+                                                Vec3d p) const override;
+  std::optional<analysis::SurfaceCrossing> intersect(std::uint32_t geom, std::uint32_t prim, double b1, double b2,
+                                                     Vec3d org, Vec3d dir) const override;
+  std::optional<double> first_crossing(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin) const override;
+  ~CadSurfaces() override;
+
+ private:
+  struct Intersectors;  // OpenCASCADE shape intersectors, built on first use
+  struct Classifiers;   // per face, whether a (u, v) lies inside its trimming wires
+  std::vector<CadLink> links_;
+  std::vector<std::vector<std::uint8_t>> folded_;
+  std::unique_ptr<Intersectors> intersectors_;
+  std::unique_ptr<Classifiers> classifiers_;
+};
+
+// The surfaces of every CAD file among `files` (as add_any_model returned them), for a scene of
+// `geometries` geometries; nullptr when none of the files is a CAD file.
+std::shared_ptr<const CadSurfaces> cad_surfaces(const std::vector<LoadedFile>& files, std::size_t geometries);
+
+}  // namespace pierce

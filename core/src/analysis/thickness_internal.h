@@ -1,0 +1,66 @@
+#pragma once
+// compute_thickness in three stages (internal to pierce_core): sampling (thickness_sampling.cpp)
+// builds the samples and the result's rows, tracing (thickness_trace.cpp) measures each sample
+// with the chosen method, statistics (thickness_stats.cpp) fills the per-solid summaries.
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "pierce/analysis/thickness.h"
+
+namespace pierce::analysis::detail {
+
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// One point to measure: where, along which inward direction, and which triangles pass
+// through it (skipped by the sphere method's closest-point queries).
+struct Sample {
+  std::uint32_t geom;
+  std::uint32_t out_index;  // position in the result arrays
+  Vec3d point, inward;      // CAD: on the exact face, along its exact inward normal
+  std::uint32_t exclude_begin, exclude_end;  // range in SampleSet::exclude
+  std::uint32_t prim = kInvalidId;           // face samples: the triangle the point lies on
+  // CAD input (ThicknessOptions::exact or tessellation_flags covers the geometry):
+  Vec3d mesh_point{};        // the mesh sample `point` was projected from: mesh rays start here
+  bool cad = false;          // tessellation statuses apply
+  bool exact = false;        // exits are refined on the exact faces
+  bool closed = false;       // the geometry's mesh is closed: a ray must find an exit
+  ThicknessStatus preset = ThicknessStatus::ok;  // not ok: known without tracing
+};
+
+struct SampleSet {
+  std::vector<Sample> samples;
+  std::vector<std::uint32_t> exclude;
+  // Result slots filled by copying another slot's result (welded duplicates of a vertex).
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> copies;  // (to, from)
+  std::vector<std::pair<std::size_t, std::size_t>> ranges;      // result range per sampled solid
+  std::vector<std::uint32_t> solids;                            // the sampled solids
+};
+
+// Validates the options (throws std::invalid_argument).
+void check_options(const Accel& accel, const ThicknessOptions& o);
+
+// The solids to sample, the result's rows (NaN thickness; status ok or no_normal) and the
+// samples, per vertex or per face; CAD samples projected onto the exact faces.
+SampleSet build_samples(const Scene& scene, const ThicknessOptions& opts, ThicknessResult& res);
+
+// One sample per point (thickness_at): projected onto its solid's triangles, then like a CAD or
+// mesh face sample.
+SampleSet build_point_samples(const Scene& scene, const ThicknessOptions& opts, const std::vector<std::uint32_t>& solids,
+                              const std::vector<Vec3d>& points, const std::vector<Vec3d>& normals,
+                              ThicknessResult& res);
+
+// Measures every sample (in parallel, progress per sample) and writes each result slot's
+// thickness and status (CAD: the smallest of a slot's samples, with its point and normal).
+// False if cancelled.
+bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const SampleSet& set, ThicknessResult& res,
+                   const Progress& progress);
+
+// Copies, thin flags and the per-solid statistics.
+void finish_statistics(const Scene& scene, const ThicknessOptions& opts, const SampleSet& set, ThicknessResult& res);
+
+// Whether geometry g is CAD input for these options, and its folded-triangle flags (empty: none).
+bool is_cad(const ThicknessOptions& opts, std::uint32_t g);
+std::span<const std::uint8_t> folded_flags(const ThicknessOptions& opts, std::uint32_t g);
+
+}  // namespace pierce::analysis::detail

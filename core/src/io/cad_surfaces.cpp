@@ -1,0 +1,279 @@
+#include "pierce/io/cad_surfaces.h"
+
+#include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <BRepTopAdaptor_FClass2d.hxx>
+#include <IntCurvesFace_Intersector.hxx>
+#include <IntCurvesFace_ShapeIntersector.hxx>
+#include <Standard_Failure.hxx>
+#include <gp_Lin.hxx>
+#include <gp_Pnt2d.hxx>
+#include <gp_Pnt.hxx>
+#include <gp_Vec.hxx>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <stdexcept>
+
+#include "cad_faces.h"
+
+namespace pierce {
+
+namespace {
+
+Vec3d vec(const gp_XYZ& p) { return {p.X(), p.Y(), p.Z()}; }
+
+constexpr int kMaxNewtonSteps = 30;
+
+// Whether (u, v) lies in the face's parameter range, widened by `slack` of its size (Newton may
+// end a hair outside a trimmed face near its boundary; periodic directions are not bounded).
+bool in_range(const CadFaces::Face& f, double u, double v, double slack) {
+  const double du = (f.umax - f.umin) * slack, dv = (f.vmax - f.vmin) * slack;
+  const bool up = f.surface->IsUPeriodic(), vp = f.surface->IsVPeriodic();
+  return (up || (u >= f.umin - du && u <= f.umax + du)) && (vp || (v >= f.vmin - dv && v <= f.vmax + dv));
+}
+
+struct Start {
+  const CadFaces::Face* face;
+  double u, v;
+  double size;  // the triangle's largest corner distance on the surface: how far Newton may go
+};
+
+}  // namespace
+
+struct CadSurfaces::Intersectors {
+  std::mutex mutex;
+  std::map<std::uint32_t, std::unique_ptr<IntCurvesFace_ShapeIntersector>> of_geom;
+};
+
+struct CadSurfaces::Classifiers {
+  std::vector<std::vector<std::unique_ptr<BRepTopAdaptor_FClass2d>>> of_geom;  // [geom][face]
+};
+
+CadSurfaces::~CadSurfaces() = default;
+
+std::optional<double> CadSurfaces::first_crossing(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin) const {
+  const CadLink& l = links_.at(geom);
+  if (l.empty() || l.faces->shape.IsNull()) return std::nullopt;
+  const std::lock_guard<std::mutex> lock(intersectors_->mutex);
+  try {
+    auto& x = intersectors_->of_geom[geom];
+    if (!x) {
+      x = std::make_unique<IntCurvesFace_ShapeIntersector>();
+      x->Load(l.faces->shape, 1e-9 * std::max(1.0, std::max({std::abs(org.x), std::abs(org.y), std::abs(org.z)})));
+    }
+    x->Perform(gp_Lin(gp_Pnt(org.x, org.y, org.z), gp_Dir(dir.x, dir.y, dir.z)), tmin,
+               std::numeric_limits<double>::infinity());
+    if (!x->IsDone()) return std::nullopt;
+    std::optional<double> best;
+    for (Standard_Integer i = 1; i <= x->NbPnt(); ++i)
+      if (x->WParameter(i) > tmin && (!best || x->WParameter(i) < *best)) best = x->WParameter(i);
+    return best;
+  } catch (const Standard_Failure&) {
+    return std::nullopt;
+  }
+}
+
+CadSurfaces::CadSurfaces(std::vector<CadLink> links)
+    : links_(std::move(links)),
+      intersectors_(std::make_unique<Intersectors>()),
+      classifiers_(std::make_unique<Classifiers>()) {
+  classifiers_->of_geom.resize(links_.size());
+  for (std::size_t g = 0; g < links_.size(); ++g) {
+    if (links_[g].empty()) continue;
+    for (const CadFaces::Face& f : links_[g].faces->faces) {
+      std::unique_ptr<BRepTopAdaptor_FClass2d> c;
+      try {
+        const double span = std::max(f.umax - f.umin, f.vmax - f.vmin);
+        c = std::make_unique<BRepTopAdaptor_FClass2d>(f.face, 1e-9 * std::max(span, 1e-300));
+      } catch (const Standard_Failure&) {
+        c.reset();  // unclassifiable: refined points on it are not checked against its trim
+      }
+      classifiers_->of_geom[g].push_back(std::move(c));
+    }
+  }
+  folded_.resize(links_.size());
+  for (std::size_t g = 0; g < links_.size(); ++g) {
+    const CadLink& l = links_[g];
+    if (l.empty()) continue;
+    if (l.face.size() != l.uv.size() || l.face.size() != l.flags.size())
+      throw std::invalid_argument("CadSurfaces: inconsistent link of geometry " + std::to_string(g));
+    folded_[g].resize(l.flags.size());
+    for (std::size_t t = 0; t < l.flags.size(); ++t) folded_[g][t] = (l.flags[t] & kTriangleFolded) != 0;
+  }
+}
+
+bool CadSurfaces::any() const {
+  return std::any_of(links_.begin(), links_.end(), [](const CadLink& l) { return !l.empty(); });
+}
+
+bool CadSurfaces::covers(std::uint32_t geom) const { return geom < links_.size() && !links_[geom].empty(); }
+
+std::uint32_t CadSurfaces::face_of(std::uint32_t geom, std::uint32_t prim) const { return links_.at(geom).face.at(prim); }
+
+std::span<const std::uint8_t> CadSurfaces::folded(std::uint32_t geom) const {
+  if (geom >= folded_.size()) return {};
+  return folded_[geom];
+}
+
+namespace {
+
+Start start_of(const CadLink& l, std::uint32_t prim, double b1, double b2) {
+  const CadFaces::Face& f = l.faces->faces.at(l.face.at(prim));
+  const auto& uv = l.uv[prim];
+  const double b0 = 1.0 - b1 - b2;
+  Start s{&f, b0 * uv[0] + b1 * uv[2] + b2 * uv[4], b0 * uv[1] + b1 * uv[3] + b2 * uv[5], 0};
+  gp_Pnt c[3];
+  for (int k = 0; k < 3; ++k) c[k] = f.surface->Value(uv[std::size_t(2 * k)], uv[std::size_t(2 * k + 1)]);
+  s.size = std::max({c[0].Distance(c[1]), c[1].Distance(c[2]), c[2].Distance(c[0])});
+  return s;
+}
+
+}  // namespace
+
+// Foot point: Newton on the gradient of |S(u, v) - p|^2 / 2 (second derivatives included;
+// Gauss-Newton where the Hessian is not positive definite).
+std::optional<analysis::SurfacePoint> CadSurfaces::project(std::uint32_t geom, std::uint32_t prim, double b1,
+                                                           double b2, Vec3d p) const {
+  const Start s = start_of(links_.at(geom), prim, b1, b2);
+  const Geom_Surface& surf = *s.face->surface;
+  double u = s.u, v = s.v;
+  const gp_Pnt p0 = surf.Value(u, v);
+  const double scale = std::max({1.0, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  const double tol = 1e-12 * scale;  // the step after it is far below (quadratic convergence)
+  bool converged = false;
+  gp_Pnt q;
+  gp_Vec su, sv, suu, svv, suv;
+  for (int i = 0; i < kMaxNewtonSteps; ++i) {
+    surf.D2(u, v, q, su, sv, suu, svv, suv);
+    const gp_Vec r(gp_Pnt(p.x, p.y, p.z), q);  // S - p
+    const double gu = su.Dot(r), gv = sv.Dot(r);
+    double a = su.Dot(su) + suu.Dot(r), b = su.Dot(sv) + suv.Dot(r), d = sv.Dot(sv) + svv.Dot(r);
+    double det = a * d - b * b;
+    if (!(a > 0 && det > 0)) {
+      a = su.Dot(su), b = su.Dot(sv), d = sv.Dot(sv);
+      det = a * d - b * b;
+      if (!(det > 0)) return std::nullopt;
+    }
+    const double du = -(d * gu - b * gv) / det, dv = -(a * gv - b * gu) / det;
+    u += du, v += dv;
+    const double step = (su * du + sv * dv).Magnitude();
+    if (step <= tol) {
+      converged = true;
+      break;
+    }
+  }
+  const gp_Pnt target(p.x, p.y, p.z);
+  auto plausible = [&](double uu, double vv) {
+    return in_range(*s.face, uu, vv, 1e-3) && surf.Value(uu, vv).Distance(p0) <= 2 * s.size + surf.Value(uu, vv).Distance(target);
+  };
+  if (!converged || !plausible(u, v)) {
+    // Newton failed (near a pole or a strongly curved patch): OpenCASCADE's projection on the
+    // face's parameter range, the nearest solution.
+    converged = false;
+    try {
+      GeomAPI_ProjectPointOnSurf proj(target, s.face->surface, s.face->umin, s.face->umax, s.face->vmin, s.face->vmax);
+      if (proj.NbPoints() > 0) {
+        proj.LowerDistanceParameters(u, v);
+        converged = plausible(u, v);
+      }
+    } catch (const Standard_Failure&) {
+      converged = false;
+    }
+    if (!converged) return std::nullopt;
+  }
+  surf.D1(u, v, q, su, sv);
+  const gp_Vec n = su.Crossed(sv) * s.face->sign;
+  const double len = n.Magnitude();
+  if (!(len > 1e-12 * su.Magnitude() * sv.Magnitude()) || !(len > 0))
+    return analysis::SurfacePoint{vec(q.XYZ()), Vec3d{}};  // a singular point: no normal
+  return analysis::SurfacePoint{vec(q.XYZ()), vec(n.XYZ()) * (1.0 / len)};
+}
+
+// S(u, v) = org + t dir: Newton on (u, v, t) with the Jacobian [Su Sv -dir].
+std::optional<analysis::SurfaceCrossing> CadSurfaces::intersect(std::uint32_t geom, std::uint32_t prim, double b1,
+                                                                double b2, Vec3d org, Vec3d dir) const {
+  const Start s = start_of(links_.at(geom), prim, b1, b2);
+  const Geom_Surface& surf = *s.face->surface;
+  double u = s.u, v = s.v;
+  const gp_Vec d(dir.x, dir.y, dir.z);
+  const gp_Pnt o(org.x, org.y, org.z);
+  gp_Pnt q = surf.Value(u, v);
+  const gp_Pnt p0 = q;
+  double t = gp_Vec(o, q).Dot(d) / d.SquareMagnitude();
+  const double scale = std::max({1.0, std::abs(org.x), std::abs(org.y), std::abs(org.z)});
+  const double tol = 1e-12 * scale;  // the step after it is far below (quadratic convergence)
+  gp_Vec su, sv;
+  bool converged = false;
+  for (int i = 0; i < kMaxNewtonSteps; ++i) {
+    surf.D1(u, v, q, su, sv);
+    const gp_Vec f = gp_Vec(o, q) - d * t;  // S - org - t dir
+    // Solve [su sv -d] x = -f by Cramer's rule.
+    const gp_Vec m = d * -1.0;
+    const double det = su.Dot(sv.Crossed(m));
+    if (!(std::abs(det) > 0)) return std::nullopt;
+    const gp_Vec rhs = f * -1.0;
+    const double du = rhs.Dot(sv.Crossed(m)) / det;
+    const double dv = su.Dot(rhs.Crossed(m)) / det;
+    const double dt = su.Dot(sv.Crossed(rhs)) / det;
+    u += du, v += dv, t += dt;
+    const double step = (su * du + sv * dv).Magnitude() + std::abs(dt) * d.Magnitude();
+    if (step <= tol) {
+      converged = true;
+      break;
+    }
+  }
+  const double t0 = gp_Vec(o, p0).Dot(d) / d.SquareMagnitude();
+  // The face's outward unit normal at (uu, vv), zero where undefined.
+  auto normal_at = [&](double uu, double vv) {
+    gp_Pnt pp;
+    gp_Vec du, dv;
+    surf.D1(uu, vv, pp, du, dv);
+    const gp_Vec n = du.Crossed(dv) * s.face->sign;
+    const double len = n.Magnitude();
+    return len > 1e-12 * du.Magnitude() * dv.Magnitude() && len > 0 ? vec(n.XYZ()) * (1.0 / len) : Vec3d{};
+  };
+  // Inside the face's trim: a crossing of the untrimmed surface beyond the face's boundary is
+  // not where the ray leaves (it left through a neighbour first).
+  const BRepTopAdaptor_FClass2d* trim = classifiers_->of_geom.at(geom).at(links_[geom].face.at(prim)).get();
+  auto in_face = [&](double uu, double vv) {
+    return !trim || trim->Perform(gp_Pnt2d(uu, vv)) != TopAbs_OUT;
+  };
+  if (converged && t > 0 && in_range(*s.face, u, v, 1e-3) &&
+      surf.Value(u, v).Distance(p0) <= 2 * s.size + 1e-9 * scale) {
+    if (!in_face(u, v)) return std::nullopt;  // the caller asks the whole B-rep
+    return analysis::SurfaceCrossing{t, normal_at(u, v)};
+  }
+  // Newton failed (near a pole, a grazing ray): OpenCASCADE's exact intersection of the line with
+  // the face, the crossing nearest to the start. Rare, so the intersector is built here.
+  try {
+    IntCurvesFace_Intersector x(s.face->face, 1e-9 * scale);
+    const double len = d.Magnitude();
+    x.Perform(gp_Lin(o, gp_Dir(d)), 0, std::numeric_limits<double>::infinity());
+    if (!x.IsDone()) return std::nullopt;
+    std::optional<analysis::SurfaceCrossing> best;
+    for (Standard_Integer i = 1; i <= x.NbPnt(); ++i) {
+      const double w = x.WParameter(i) / len;
+      if (!(w > 0) || x.Pnt(i).Distance(p0) > 2 * s.size + 1e-9 * scale) continue;
+      if (!best || std::abs(w - t0) < std::abs(best->t - t0)) best = analysis::SurfaceCrossing{w, normal_at(x.UParameter(i), x.VParameter(i))};
+    }
+    return best;
+  } catch (const Standard_Failure&) {
+    return std::nullopt;
+  }
+}
+
+std::shared_ptr<const CadSurfaces> cad_surfaces(const std::vector<LoadedFile>& files, std::size_t geometries) {
+  std::vector<CadLink> links(geometries);
+  bool any = false;
+  for (const LoadedFile& f : files)
+    for (std::size_t k = 0; k < f.cad.size() && f.first_geometry + k < geometries; ++k) {
+      links[f.first_geometry + k] = f.cad[k];
+      any = any || !f.cad[k].empty();
+    }
+  if (!any) return nullptr;
+  return std::make_shared<CadSurfaces>(std::move(links));
+}
+
+}  // namespace pierce

@@ -1,0 +1,383 @@
+// Thickness maps true to the CAD model: solids built here with OpenCASCADE (fillets on a thin
+// bent sheet, blends meeting at corners, a hollow toroid), loaded through the CAD loader, and
+// every sample checked against OpenCASCADE's exact ray intersection with the B-rep
+// (IntCurvesFace_ShapeIntersector) from the sample's point along its inward normal. Plus the
+// loader's fold detection on an injected fold: repaired by remeshing, or flagged with the
+// `tessellation` status and left out of the statistics.
+#include <gtest/gtest.h>
+
+#include <BRepBndLib.hxx>
+#include <Bnd_Box.hxx>
+#include <IntCurvesFace_ShapeIntersector.hxx>
+#include <gp_Lin.hxx>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <unistd.h>
+
+#include "pierce/analysis/thickness.h"
+#include "pierce/io/cad_surfaces.h"
+#include "pierce/io/model_io.h"
+#include "step_assembly.h"
+
+namespace pierce::test {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace pierce::analysis;
+
+fs::path temp_dir() {
+  static const fs::path dir = [] {
+    fs::path d = fs::temp_directory_path() / ("pierce_cad_exact_test_" + std::to_string(::getpid()));
+    fs::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+class TempDirCleanup : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(temp_dir(), ec);
+  }
+};
+[[maybe_unused]] const ::testing::Environment* const kCleanup = ::testing::AddGlobalTestEnvironment(new TempDirCleanup);
+
+struct Loaded {
+  Scene scene;
+  std::vector<LoadedFile> files;
+  std::shared_ptr<const CadSurfaces> exact;
+};
+
+std::unique_ptr<Loaded> load(const TopoDS_Shape& shape, const std::string& name, TessellationOptions t = {}) {
+  const std::string path = (temp_dir() / (name + ".brep")).string();
+  test_models::write_brep(shape, path);
+  auto l = std::make_unique<Loaded>();
+  l->files = add_any_model(l->scene, {path}, t);
+  l->exact = cad_surfaces(l->files, l->scene.geometries().size());
+  return l;
+}
+
+double diagonal(const TopoDS_Shape& shape) {
+  Bnd_Box box;
+  BRepBndLib::Add(shape, box);
+  return std::sqrt(box.SquareExtent());
+}
+
+// The exact thickness: distance from p along dir to the first crossing of the B-rep beyond the
+// start face (parameters below `skip` are the start face itself); NaN when there is none.
+class ExactReference {
+ public:
+  ExactReference(const TopoDS_Shape& shape, double size) : size_(size) { x_.Load(shape, 1e-9 * size); }
+  double exit(Vec3d p, Vec3d inward) {
+    x_.Perform(gp_Lin(gp_Pnt(p.x, p.y, p.z), gp_Dir(inward.x, inward.y, inward.z)), 1e-7 * size_, 1e9 * size_);
+    double best = std::numeric_limits<double>::quiet_NaN();
+    if (!x_.IsDone()) return best;
+    for (Standard_Integer i = 1; i <= x_.NbPnt(); ++i)
+      if (!(x_.WParameter(i) >= best)) best = x_.WParameter(i);
+    return best;
+  }
+
+ private:
+  IntCurvesFace_ShapeIntersector x_;
+  double size_;
+};
+
+struct Comparison {
+  std::size_t compared = 0, ok = 0, tessellation = 0;
+  double max_error = 0;
+};
+
+// Every valid sample of `r` against the exact reference along its normal; the wall of every
+// sample (exact value) must not be contradicted: no valid value under half the exact one.
+Comparison compare(const ThicknessResult& r, ExactReference& ref, double tol) {
+  Comparison c;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    if (r.status[i] == ThicknessStatus::tessellation) ++c.tessellation;
+    if (r.status[i] != ThicknessStatus::ok) continue;
+    ++c.ok;
+    const double exact = ref.exit(r.point[i], r.normal[i] * -1.0);
+    EXPECT_TRUE(std::isfinite(exact)) << "sample " << i << " has no exact exit";
+    if (!std::isfinite(exact)) continue;
+    ++c.compared;
+    const double err = std::abs(r.thickness[i] - exact);
+    c.max_error = std::max(c.max_error, err);
+    EXPECT_LE(err, tol) << "sample " << i << " element " << r.element[i] << " at (" << r.point[i].x << ", "
+                        << r.point[i].y << ", " << r.point[i].z << "): pierce " << r.thickness[i] << ", exact "
+                        << exact;
+  }
+  return c;
+}
+
+void expect_b_rep_true(const TopoDS_Shape& shape, const std::string& name, SampleAt per, double wall_min) {
+  const auto l = load(shape, name);
+  ASSERT_TRUE(l->exact);
+  const double size = diagonal(shape);
+  ThicknessOptions o;
+  o.per = per;
+  o.exact = l->exact.get();
+  const Accel accel(l->scene);
+  const ThicknessResult r = compute_thickness(accel, o);
+  ASSERT_TRUE(r.completed);
+  ExactReference ref(shape, size);
+  const Comparison c = compare(r, ref, 1e-6 * size);
+  std::cout << name << " per " << enum_name(per) << ": " << r.size() << " samples, " << c.compared
+            << " compared, max error " << c.max_error << " (" << c.max_error / size << " of the size), "
+            << c.tessellation << " tessellation\n";
+  EXPECT_GT(c.compared, r.size() * 9 / 10);
+  ASSERT_EQ(r.solids.size(), 1u);
+  const SolidThickness& s = r.solids[0];
+  EXPECT_TRUE(s.exact);
+  EXPECT_EQ(s.tessellation, c.tessellation);
+  EXPECT_EQ(s.valid, c.ok);
+  // No false thin spot: the summary minimum is the wall.
+  EXPECT_GE(s.summary.min, wall_min * (1 - 1e-6));
+  EXPECT_EQ(r.brep_faces.size(), r.size());
+  std::size_t edges = 0;
+  for (auto f : r.brep_faces) {
+    if (per == SampleAt::face) {
+      EXPECT_EQ(f, 1);
+    }
+    edges += f >= 2;
+  }
+  EXPECT_EQ(s.edge_samples, edges);
+  // Models with edges between faces (all but the torus, one face per tube): vertices on them are
+  // sampled per face.
+  if (per == SampleAt::vertex && l->files[0].cad[0].check.faces > 2) {
+    EXPECT_GT(edges, 0u);
+  }
+  const TessellationCheck& chk = l->files[0].cad[0].check;
+  std::cout << "  tessellation check: " << chk.faces << " faces, " << chk.folded_found << " folded found, "
+            << chk.folded << " left, " << chk.slivers << " slivers, " << chk.remesh_rounds << " remesh rounds\n";
+}
+
+TEST(CadExact, BentSheetFaceSamplesAreBrepTrue) {
+  expect_b_rep_true(test_models::bent_sheet(), "sheet_face", SampleAt::face, 0.5);
+}
+
+TEST(CadExact, BentSheetVertexSamplesAreBrepTrue) {
+  expect_b_rep_true(test_models::bent_sheet(), "sheet_vertex", SampleAt::vertex, 0.5);
+}
+
+TEST(CadExact, FilletedBoxFaceSamplesAreBrepTrue) {
+  expect_b_rep_true(test_models::filleted_box(), "box_face", SampleAt::face, 1.0);
+}
+
+TEST(CadExact, FilletedBoxVertexSamplesAreBrepTrue) {
+  expect_b_rep_true(test_models::filleted_box(), "box_vertex", SampleAt::vertex, 1.0);
+}
+
+TEST(CadExact, HollowTorusFaceSamplesAreBrepTrue) {
+  expect_b_rep_true(test_models::hollow_torus(), "torus_face", SampleAt::face, 0.2);
+}
+
+TEST(CadExact, HollowTorusVertexSamplesAreBrepTrue) {
+  expect_b_rep_true(test_models::hollow_torus(), "torus_vertex", SampleAt::vertex, 0.2);
+}
+
+// The thin plate with tiny blends: its mesh alone reads walls far under the sheet's 0.3 (where
+// rays start on the blends' chords); on the B-rep every valid sample is B-rep true and the
+// minimum is the sheet.
+TEST(CadExact, ThinBlendedPlateHasNoFalseThinSpot) {
+  expect_b_rep_true(test_models::thin_blended_plate(), "plate_face", SampleAt::face, 0.3);
+  const auto l = load(test_models::thin_blended_plate(), "plate_min");
+  ThicknessOptions o;
+  o.per = SampleAt::face;
+  const Accel accel(l->scene);
+  const ThicknessResult mesh = compute_thickness(accel, o);
+  o.exact = l->exact.get();
+  const ThicknessResult exact = compute_thickness(accel, o);
+  std::cout << "thin plate: mesh min " << mesh.solids[0].summary.min << ", B-rep min " << exact.solids[0].summary.min
+            << "\n";
+  EXPECT_LT(mesh.solids[0].summary.min, 0.5 * 0.3);  // the false thin spots this is about
+  EXPECT_NEAR(exact.solids[0].summary.min, 0.3, 1e-6 * 43);
+}
+
+// A B-spline side meeting planar caps at acute rims: face samples there graze the side (where
+// Newton or the mesh give no answer, the B-rep is intersected directly); vertex samples on the
+// acute rims are taken along the mean of the faces' normals (each face's own would leave at once).
+TEST(CadExact, LoftFaceSamplesAreBrepTrue) {
+  expect_b_rep_true(test_models::lofted_solid(), "loft_face", SampleAt::face, 0.0);
+}
+
+TEST(CadExact, LoftVertexSamplesAreBrepTrue) {
+  expect_b_rep_true(test_models::lofted_solid(), "loft_vertex", SampleAt::vertex, 0.0);
+}
+
+// The B-rep fallback: with the fold's flag withheld, rays that meet the upside-down triangle
+// find no exit on the mesh; the exact intersection gives their B-rep value instead.
+TEST(CadExact, NoExitOnTheMeshFallsBackToTheBrep) {
+  const TopoDS_Shape folded = test_models::with_folded_triangle(test_models::filleted_box(), 0.01);
+  const auto l = load(folded, "fold_unflagged", TessellationOptions{0.05, 15, 0});
+  std::vector<CadLink> links = l->files[0].cad;
+  ASSERT_EQ(links[0].check.folded, 1u);
+  for (auto& f : links[0].flags) f = 0;
+  const CadSurfaces unflagged(links);
+  ThicknessOptions o;
+  o.per = SampleAt::face;
+  o.exact = &unflagged;
+  const Accel accel(l->scene);
+  const ThicknessResult r = compute_thickness(accel, o);
+  ExactReference ref(folded, diagonal(folded));
+  const Comparison c = compare(r, ref, 1e-6 * diagonal(folded));
+  EXPECT_EQ(c.tessellation, 0u);
+  EXPECT_EQ(c.compared, r.size());
+  // The mesh alone has samples without exit here: the fallback answered them.
+  ThicknessOptions mesh_only;
+  mesh_only.per = SampleAt::face;
+  EXPECT_GT(compute_thickness(accel, mesh_only).solids[0].no_exit, 0u);
+  // first_crossing itself: from outside the box along +x, the first crossing is its face x = 0.
+  const auto t = unflagged.first_crossing(0, {-2, 4, 3}, {1, 0, 0}, 0.0);
+  ASSERT_TRUE(t.has_value());
+  EXPECT_NEAR(*t, 2.0, 1e-9);
+  EXPECT_FALSE(unflagged.first_crossing(0, {-2, 4, 3}, {-1, 0, 0}, 0.0).has_value());
+}
+
+// On the B-rep, the sheet's wall is exactly 0.5 across its flat legs and the bend: face samples
+// on the big faces (not the end caps, whose normals run along the sheet) read 0.5.
+TEST(CadExact, BentSheetWallIsHalfAMillimetreEverywhere) {
+  const auto l = load(test_models::bent_sheet(), "sheet_wall");
+  ThicknessOptions o;
+  o.per = SampleAt::face;
+  o.exact = l->exact.get();
+  const ThicknessResult r = compute_thickness(Accel(l->scene), o);
+  std::size_t on_wall = 0;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    if (r.status[i] != ThicknessStatus::ok) continue;
+    const Vec3d n = r.normal[i];
+    if (std::abs(n.y) > 0.5) continue;                               // y end caps
+    if (std::abs(n.x) > 0.99 && r.point[i].x > 11.99) continue;      // leg end x = 12
+    if (std::abs(n.z) > 0.99 && r.point[i].z > 11.99) continue;      // leg end z = 12
+    ++on_wall;
+    EXPECT_NEAR(r.thickness[i], 0.5, 1e-6 * 17) << "sample " << i;
+  }
+  EXPECT_GT(on_wall, 40u);
+}
+
+// Without the B-rep (a mesh of the same solid), the mesh's chords make the wall differ from 0.5
+// by up to the deflection: refinement is what makes it exact.
+TEST(CadExact, RefinementIsWhatMakesItExact) {
+  const auto l = load(test_models::hollow_torus(), "torus_mesh", TessellationOptions{0.05, 15, 3});
+  ThicknessOptions o;
+  o.per = SampleAt::face;
+  const ThicknessResult mesh = compute_thickness(Accel(l->scene), o);
+  o.exact = l->exact.get();
+  const ThicknessResult exact = compute_thickness(Accel(l->scene), o);
+  double mesh_err = 0, exact_err = 0;
+  for (std::size_t i = 0; i < mesh.size(); ++i) {
+    // Samples on the outer tube (distance 1 from the core circle) cross the 0.2 wall.
+    const Vec3d p = exact.point[i];
+    const double rho = std::hypot(p.x, p.y) - 5.0;
+    if (std::hypot(rho, p.z) < 0.9 || exact.status[i] != ThicknessStatus::ok) continue;
+    if (mesh.status[i] == ThicknessStatus::ok) mesh_err = std::max(mesh_err, std::abs(mesh.thickness[i] - 0.2));
+    exact_err = std::max(exact_err, std::abs(exact.thickness[i] - 0.2));
+  }
+  EXPECT_LT(exact_err, 1e-6 * 12);
+  EXPECT_GT(mesh_err, 100 * exact_err);
+  EXPECT_TRUE(mesh.brep_faces.empty());
+}
+
+// Cone and sphere on CAD input: the cone's rays are refined on the B-rep (none shorter than the
+// 0.2 wall), the sphere's ball lives on the mesh (within the deflection of the wall).
+TEST(CadExact, ConeAndSphereOnTheTorusWall) {
+  const auto l = load(test_models::hollow_torus(), "torus_methods");
+  const Accel accel(l->scene);
+  const double deflection = l->files[0].linear_deflection;
+  ThicknessOptions o;
+  o.per = SampleAt::face;
+  o.exact = l->exact.get();
+  o.method = ThicknessMethod::cone;
+  const ThicknessResult cone = compute_thickness(accel, o);
+  EXPECT_EQ(cone.solids[0].valid, cone.size());
+  EXPECT_GE(cone.solids[0].summary.min, 0.2 - 1e-9);
+  o.method = ThicknessMethod::sphere;
+  const ThicknessResult sphere = compute_thickness(accel, o);
+  EXPECT_EQ(sphere.solids[0].valid, sphere.size());
+  EXPECT_NEAR(sphere.solids[0].summary.min, 0.2, 2 * deflection);
+  EXPECT_NEAR(sphere.solids[0].summary.max, 0.2, 2 * deflection);
+}
+
+TEST(CadTessellation, FoldIsFoundAndRemeshed) {
+  const TopoDS_Shape folded = test_models::with_folded_triangle(test_models::filleted_box(), 0.01);
+  const auto l = load(folded, "fold_remeshed", TessellationOptions{0.05, 15, 3});
+  ASSERT_EQ(l->files.size(), 1u);
+  ASSERT_EQ(l->files[0].cad.size(), 1u);
+  const TessellationCheck& c = l->files[0].cad[0].check;
+  EXPECT_EQ(c.folded_found, 1u);
+  EXPECT_EQ(c.faces_folded, 1u);
+  EXPECT_GE(c.remesh_rounds, 1);
+  EXPECT_EQ(c.faces_remeshed, std::size_t(c.remesh_rounds) * c.faces);
+  EXPECT_EQ(c.folded, 0u);
+  EXPECT_EQ(c.faces, 26u);  // 6 sides, 12 edge blends, 8 corner blends
+  bool warned = false;
+  for (const std::string& w : l->files[0].warnings) warned = warned || w.find("folded") != std::string::npos;
+  EXPECT_TRUE(warned);
+}
+
+TEST(CadTessellation, FoldLeftInPlaceIsFlaggedAndExcluded) {
+  const TopoDS_Shape folded = test_models::with_folded_triangle(test_models::filleted_box(), 0.01);
+  const auto l = load(folded, "fold_flagged", TessellationOptions{0.05, 15, 0});
+  const CadLink& link = l->files[0].cad[0];
+  EXPECT_EQ(link.check.folded, 1u);
+  EXPECT_EQ(link.check.remesh_rounds, 0);
+  std::uint32_t fold = kInvalidId;
+  for (std::uint32_t t = 0; t < link.flags.size(); ++t)
+    if (link.flags[t] & kTriangleFolded) fold = t;
+  ASSERT_NE(fold, kInvalidId);
+  for (const bool with_brep : {true, false}) {
+    ThicknessOptions o;
+    o.per = SampleAt::face;
+    if (with_brep) {
+      o.exact = l->exact.get();
+    } else {
+      o.tessellation_flags.resize(1);
+      for (auto f : link.flags) o.tessellation_flags[0].push_back((f & kTriangleFolded) != 0);
+    }
+    const ThicknessResult r = compute_thickness(Accel(l->scene), o);
+    EXPECT_EQ(r.status[fold], ThicknessStatus::tessellation);
+    EXPECT_TRUE(std::isnan(r.thickness[fold]));
+    std::size_t tess = 0, finite = 0;
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      tess += r.status[i] == ThicknessStatus::tessellation;
+      finite += std::isfinite(r.thickness[i]);
+    }
+    EXPECT_EQ(r.solids[0].tessellation, tess);
+    EXPECT_EQ(r.solids[0].valid, finite);
+    EXPECT_EQ(r.solids[0].summary.count, finite);
+    EXPECT_EQ(r.solids[0].elements, r.size());
+    EXPECT_GE(r.solids[0].summary.min, with_brep ? 1.0 - 1e-6 : 0.9);
+  }
+}
+
+// thickness_at: points near the surface are projected onto it and measured like a caliper.
+TEST(CadExact, ThicknessAtChosenPoints) {
+  const TopoDS_Shape sheet = test_models::bent_sheet();
+  const auto l = load(sheet, "sheet_at");
+  ThicknessOptions o;
+  o.exact = l->exact.get();
+  const Accel accel(l->scene);
+  // On the outer face of the horizontal leg (z = 0), slightly off; on the bend's outer
+  // cylinder; on the inner face of the vertical leg with a given normal; far inside the leg.
+  const double r2 = std::sqrt(0.5);
+  const std::vector<Vec3d> pts = {{6, 4, -0.01}, {1.5 - 1.5 * r2, 2, 1.5 - 1.5 * r2}, {0.5, 3, 6}, {6, 4, 0.2}};
+  const std::vector<Vec3d> normals = {{0, 0, -1}, {-1, 0, -1}, {1, 0, 0}, {0, 0, -1}};
+  const ThicknessResult r = thickness_at(accel, {0, 0, 0, 0}, pts, normals, o);
+  ASSERT_EQ(r.size(), 4u);
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    EXPECT_EQ(r.status[i], ThicknessStatus::ok) << i;
+    EXPECT_NEAR(r.thickness[i], 0.5, 1e-6 * 17) << i;
+  }
+  EXPECT_NEAR(r.point[0].z, 0.0, 1e-12);
+  EXPECT_NEAR(r.point[3].z, 0.0, 1e-12);  // nearest boundary of (6, 4, 0.2): the face z = 0
+  EXPECT_NEAR(r.point[2].x, 0.5, 1e-12);
+  EXPECT_NEAR(std::hypot(r.point[1].x - 1.5, r.point[1].z - 1.5), 1.5, 1e-9);
+  EXPECT_EQ(r.solids.size(), 1u);
+  EXPECT_EQ(r.solids[0].valid, 4u);
+  EXPECT_THROW(thickness_at(accel, {0, 1}, {pts[0], pts[1]}, {}, o), std::invalid_argument);
+  EXPECT_THROW(thickness_at(accel, {0}, {pts[0], pts[1]}, {}, o), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace pierce::test
