@@ -4,29 +4,26 @@
 #include <algorithm>
 #include <vector>
 
-#include "pierce/hit.h"
-#include "pierce/traverse.h"
+#include "pierce/kernels/wide_kernel.h"
 
 namespace pierce {
 
 // C: the counter policy (counters.h).
 template <typename T, class C = NoCounters>
-class AllHitsKernel {
+class AllHitsKernel : public WideKernel<T, C> {
+  using Base = WideKernel<T, C>;
+
  public:
-  explicit AllHitsKernel(const WideBvh<T>& bvh, HitOrder order = {})
-      : bvh_(&bvh), order_(order), simd_(simd_level()) {
-    stack_.reserve(bvh.stack_capacity());
-  }
+  explicit AllHitsKernel(const WideBvh<T>& bvh, HitOrder order = {}) : Base(bvh, order) {}
 
   void begin(const Ray& ray, std::size_t /*max_hits*/ = 0) {
-    const TraversalRay<T> r = TraversalRay<T>::make(ray, bvh_->scene_max_abs);
+    this->prepare(ray);
     hits_.clear();
     pos_ = 0;
-    stack_.clear();
-    seed(*bvh_, r, r.tmin, r.tmax, stack_, counters);
-    Gather p{r, hits_};
-    traverse(simd_, *bvh_, r, stack_, p, counters);
-    std::sort(hits_.begin(), hits_.end(), order_);
+    this->seed_root(this->ray_.tmin, this->ray_.tmax);
+    Gather p{this->ray_, hits_};
+    this->run(p);
+    std::sort(hits_.begin(), hits_.end(), this->order_);
   }
 
   bool next(Hit& out) {
@@ -34,8 +31,6 @@ class AllHitsKernel {
     out = hits_[pos_++];
     return true;
   }
-
-  C counters;
 
  private:
   struct Gather : TraversalPolicy<T> {
@@ -48,10 +43,6 @@ class AllHitsKernel {
     void hit(const TriBlock<T>& b, int l, const TriangleHit<T>& h) { hits.push_back(make_hit(b, l, h)); }
   };
 
-  const WideBvh<T>* bvh_;
-  HitOrder order_;
-  SimdLevel simd_;
-  NodeStack<T> stack_;
   std::vector<Hit> hits_;
   std::size_t pos_ = 0;
 };

@@ -10,47 +10,42 @@
 #include <array>
 #include <limits>
 
-#include "pierce/hit.h"
-#include "pierce/traverse.h"
+#include "pierce/kernels/wide_kernel.h"
 
 namespace pierce {
 
 // C: the counter policy (counters.h).
 template <typename T, class C = NoCounters, std::size_t Capacity = 16>
-class BufferedKernel {
+class BufferedKernel : public WideKernel<T, C> {
+  using Base = WideKernel<T, C>;
+
  public:
-  explicit BufferedKernel(const WideBvh<T>& bvh, HitOrder order = {})
-      : bvh_(&bvh), order_(order), simd_(simd_level()) {
-    stack_.reserve(bvh.stack_capacity());
-  }
+  explicit BufferedKernel(const WideBvh<T>& bvh, HitOrder order = {}) : Base(bvh, order) {}
 
   void begin(const Ray& ray, std::size_t /*max_hits*/ = 0) {
-    ray_ = TraversalRay<T>::make(ray, bvh_->scene_max_abs);
-    have_last_ = false;
+    this->prepare(ray);
+    resume_.clear();
     start_pass();
   }
 
   bool next(Hit& out) {
     Buffer p{*this};
     for (;;) {
-      if (size_ > 0 && buf_[0].t < double(stack_.min_tn())) {
+      if (size_ > 0 && buf_[0].t < double(this->pending_.min_tn())) {
         out = buf_[0];
         for (std::size_t i = 1; i < size_; ++i) buf_[i - 1] = buf_[i];
         --size_;
-        last_ = out;
-        have_last_ = true;
+        resume_.set(out);
         return true;
       }
-      if (stack_.empty()) {
+      if (this->pending_.empty()) {
         if (!truncated_) return false;
         start_pass();  // hits were dropped: resume after the last released hit
         continue;
       }
-      traverse(simd_, *bvh_, ray_, stack_, p, counters);  // until a hit is resolved or nothing is left
+      this->run(p);  // until a hit is resolved or nothing is left
     }
   }
-
-  C counters;
 
  private:
   struct Buffer : TraversalPolicy<T> {
@@ -72,7 +67,7 @@ class BufferedKernel {
     }
     void hit(const TriBlock<T>& b, int l, const TriangleHit<T>& h) {
       const Hit key = order_key(b, l, h);
-      if (k.have_last_ && !k.order_.less(k.last_, key)) return;
+      if (k.resume_.done(k.order_, key)) return;
       k.insert(key, b, l, h);
     }
   };
@@ -81,19 +76,18 @@ class BufferedKernel {
     size_ = 0;
     truncated_ = false;
     have_cut_ = false;
-    stack_.clear();
-    seed(*bvh_, ray_, lower(), ray_.tmax, stack_, counters);
+    this->seed_root(lower(), this->ray_.tmax);
   }
 
-  T lower() const { return have_last_ ? std::max(ray_.tmin, T(last_.t)) : ray_.tmin; }
+  T lower() const { return resume_.lower(this->ray_.tmin); }
   T upper() const {
-    const T u = size_ == Capacity ? T(buf_[Capacity - 1].t) : ray_.tmax;
+    const T u = size_ == Capacity ? T(buf_[Capacity - 1].t) : this->ray_.tmax;
     return have_cut_ && T(cut_.t) < u ? T(cut_.t) : u;
   }
   // A hit (or everything in a node, from `tn` on) left for a later pass.
   void lose(const Hit& key) {
     truncated_ = true;
-    if (!have_cut_ || order_.less(key, cut_)) cut_ = key, have_cut_ = true;
+    if (!have_cut_ || this->order_.less(key, cut_)) cut_ = key, have_cut_ = true;
   }
   static Hit node_key(T tn) {  // ranks before every hit at t >= tn, under either tie policy
     Hit h;
@@ -103,14 +97,14 @@ class BufferedKernel {
 
   void insert(const Hit& key, const TriBlock<T>& b, int lane, const TriangleHit<T>& th) {
     // At or past the cut it could be released before a lost hit that ranks first: a later pass finds it.
-    if (have_cut_ && !order_.less(key, cut_)) return;
+    if (have_cut_ && !this->order_.less(key, cut_)) return;
     if (size_ == Capacity) {
-      if (!order_.less(key, buf_[Capacity - 1])) return lose(key);
+      if (!this->order_.less(key, buf_[Capacity - 1])) return lose(key);
       lose(buf_[Capacity - 1]);  // the farthest entry falls off
       --size_;
     }
     std::size_t i = size_;
-    while (i > 0 && order_.less(key, buf_[i - 1])) {
+    while (i > 0 && this->order_.less(key, buf_[i - 1])) {
       buf_[i] = buf_[i - 1];
       --i;
     }
@@ -118,18 +112,12 @@ class BufferedKernel {
     ++size_;
   }
 
-  const WideBvh<T>* bvh_;
-  HitOrder order_;
-  SimdLevel simd_;
-  TraversalRay<T> ray_;
   std::array<Hit, Capacity> buf_{};
   std::size_t size_ = 0;
   bool truncated_ = false;
   Hit cut_;  // first hit lost in this pass (by the tie order); buffered hits all rank before it
   bool have_cut_ = false;
-  Hit last_;
-  bool have_last_ = false;
-  NodeStack<T> stack_;
+  ResumeAfter resume_;
 };
 
 }  // namespace pierce

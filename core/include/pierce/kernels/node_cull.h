@@ -7,27 +7,25 @@
 #include <limits>
 #include <vector>
 
-#include "pierce/hit.h"
-#include "pierce/traverse.h"
+#include "pierce/kernels/wide_kernel.h"
 
 namespace pierce {
 
 // C: the counter policy (counters.h).
 template <typename T, class C = NoCounters>
-class NodeCullKernel {
+class NodeCullKernel : public WideKernel<T, C> {
+  using Base = WideKernel<T, C>;
+
  public:
-  explicit NodeCullKernel(const WideBvh<T>& bvh, HitOrder order = {})
-      : bvh_(&bvh), order_(order), simd_(simd_level()) {
-    stack_.reserve(bvh.stack_capacity());
-  }
+  explicit NodeCullKernel(const WideBvh<T>& bvh, HitOrder order = {}) : Base(bvh, order) {}
 
   void begin(const Ray& ray, std::size_t max_hits = 0) {
-    ray_ = TraversalRay<T>::make(ray, bvh_->scene_max_abs);
+    this->prepare(ray);
     n_ = max_hits == 0 ? std::numeric_limits<std::size_t>::max() : max_hits;
     batch_.clear();
     pos_ = 0;
-    have_last_ = false;
-    exhausted_ = bvh_->empty() || !ray_.valid();
+    resume_.clear();
+    exhausted_ = !this->traceable();
   }
 
   bool next(Hit& out) {
@@ -38,12 +36,9 @@ class NodeCullKernel {
       if (batch_.empty()) return false;
     }
     out = batch_[pos_++];
-    last_ = out;
-    have_last_ = true;
+    resume_.set(out);
     return true;
   }
-
-  C counters;
 
  private:
   struct HitBefore {
@@ -51,7 +46,7 @@ class NodeCullKernel {
     bool operator()(const Hit& a, const Hit& b) const { return order.less(a, b); }
   };
 
-  // The N closest after last_; once N are held, hi() is the N-th and culls farther nodes.
+  // The N closest after the last one returned; once N are held, hi() is the N-th and culls farther nodes.
   struct Closest : TraversalPolicy<T> {
     NodeCullKernel& k;
     T lo_;
@@ -62,7 +57,7 @@ class NodeCullKernel {
     void hit(const TriBlock<T>& b, int l, const TriangleHit<T>& h) {
       const HitBefore before{k.order_};
       const Hit key = order_key(b, l, h);
-      if (k.have_last_ && !k.order_.less(k.last_, key)) return;
+      if (k.resume_.done(k.order_, key)) return;
       if (k.batch_.size() == k.n_) {
         if (!k.order_.less(key, k.batch_.front())) return;
         std::pop_heap(k.batch_.begin(), k.batch_.end(), before);  // max-heap: front is the N-th hit
@@ -73,28 +68,21 @@ class NodeCullKernel {
     }
   };
 
-  // The n_ closest hits after last_ into batch_, sorted.
+  // The n_ closest hits after the last one returned into batch_, sorted.
   void collect() {
     batch_.clear();
     pos_ = 0;
-    Closest p{*this, have_last_ ? std::max(ray_.tmin, T(last_.t)) : ray_.tmin};
-    stack_.clear();
-    seed(*bvh_, ray_, p.lo(), ray_.tmax, stack_, counters);
-    traverse(simd_, *bvh_, ray_, stack_, p, counters);
-    std::sort_heap(batch_.begin(), batch_.end(), HitBefore{order_});
+    Closest p{*this, resume_.lower(this->ray_.tmin)};
+    this->seed_root(p.lo(), this->ray_.tmax);
+    this->run(p);
+    std::sort_heap(batch_.begin(), batch_.end(), HitBefore{this->order_});
   }
 
-  const WideBvh<T>* bvh_;
-  HitOrder order_;
-  SimdLevel simd_;
-  TraversalRay<T> ray_;
   std::size_t n_ = 0;
   std::vector<Hit> batch_;
   std::size_t pos_ = 0;
-  Hit last_;
-  bool have_last_ = false;
+  ResumeAfter resume_;
   bool exhausted_ = true;
-  NodeStack<T> stack_;
 };
 
 }  // namespace pierce

@@ -5,44 +5,38 @@
 #include <algorithm>
 #include <vector>
 
-#include "pierce/hit.h"
-#include "pierce/traverse.h"
+#include "pierce/kernels/wide_kernel.h"
 
 namespace pierce {
 
 // C: the counter policy (counters.h).
 template <typename T, class C = NoCounters>
-class QueueKernel {
+class QueueKernel : public WideKernel<T, C, NodeHeap<T>> {
+  using Base = WideKernel<T, C, NodeHeap<T>>;
+
  public:
-  explicit QueueKernel(const WideBvh<T>& bvh, HitOrder order = {})
-      : bvh_(&bvh), order_(order), simd_(simd_level()) {
-    nodes_.reserve(4 * bvh.stack_capacity());
-    hits_.reserve(16);
-  }
+  explicit QueueKernel(const WideBvh<T>& bvh, HitOrder order = {}) : Base(bvh, order) { hits_.reserve(16); }
 
   void begin(const Ray& ray, std::size_t /*max_hits*/ = 0) {
-    ray_ = TraversalRay<T>::make(ray, bvh_->scene_max_abs);
-    nodes_.clear();
+    this->prepare(ray);
     hits_.clear();
-    seed(*bvh_, ray_, ray_.tmin, ray_.tmax, nodes_, counters);
+    this->seed_root(this->ray_.tmin, this->ray_.tmax);
   }
 
   bool next(Hit& out) {
     Gather p{*this};
     for (;;) {
       // Strict: a node entered at exactly the hit's t may still hold a hit that ranks first.
-      if (!hits_.empty() && (nodes_.empty() || hits_.front().t < double(nodes_.next_tn()))) {
+      if (!hits_.empty() && (this->pending_.empty() || hits_.front().t < double(this->pending_.next_tn()))) {
         std::pop_heap(hits_.begin(), hits_.end(), hit_after_);
         out = hits_.back();
         hits_.pop_back();
         return true;
       }
-      if (nodes_.empty()) return false;
-      traverse(simd_, *bvh_, ray_, nodes_, p, counters);  // until a hit is ready or nothing is left
+      if (this->pending_.empty()) return false;
+      this->run(p);  // until a hit is ready or nothing is left
     }
   }
-
-  C counters;
 
  private:
   struct HitAfter {
@@ -67,12 +61,7 @@ class QueueKernel {
     }
   };
 
-  const WideBvh<T>* bvh_;
-  HitOrder order_;
-  HitAfter hit_after_{order_};
-  SimdLevel simd_;
-  TraversalRay<T> ray_;
-  NodeHeap<T> nodes_;
+  HitAfter hit_after_{this->order_};
   std::vector<Hit> hits_;  // min-heap in hit order
 };
 

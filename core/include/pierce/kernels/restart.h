@@ -1,42 +1,36 @@
 #pragma once
 // `restart` (Wald et al. §3): each next() is a closest-hit query for the first hit after
 // the last one in the total order. No epsilon: ties at equal t are resolved by (geom, prim).
-#include "pierce/hit.h"
-#include "pierce/traverse.h"
+#include "pierce/kernels/wide_kernel.h"
 
 namespace pierce {
 
 // C: the counter policy (counters.h).
 template <typename T, class C = NoCounters>
-class RestartKernel {
+class RestartKernel : public WideKernel<T, C> {
+  using Base = WideKernel<T, C>;
+
  public:
-  explicit RestartKernel(const WideBvh<T>& bvh, HitOrder order = {})
-      : bvh_(&bvh), order_(order), simd_(simd_level()) {
-    stack_.reserve(bvh.stack_capacity());
-  }
+  explicit RestartKernel(const WideBvh<T>& bvh, HitOrder order = {}) : Base(bvh, order) {}
 
   void begin(const Ray& ray, std::size_t /*max_hits*/ = 0) {
-    ray_ = TraversalRay<T>::make(ray, bvh_->scene_max_abs);
-    have_last_ = false;
+    this->prepare(ray);
+    resume_.clear();
   }
 
   bool next(Hit& out) {
-    if (bvh_->empty() || !ray_.valid()) return false;
-    Closest p{*this, have_last_ ? std::max(ray_.tmin, T(last_.t)) : ray_.tmin, ray_.tmax};
-    stack_.clear();
-    seed(*bvh_, ray_, p.lo_, p.hi_, stack_, counters);
-    traverse(simd_, *bvh_, ray_, stack_, p, counters);
+    if (!this->traceable()) return false;
+    Closest p{*this, resume_.lower(this->ray_.tmin), this->ray_.tmax};
+    this->seed_root(p.lo_, p.hi_);
+    this->run(p);
     if (p.block == nullptr) return false;
     out = make_hit(*p.block, p.lane, p.th);
-    last_ = out;
-    have_last_ = true;
+    resume_.set(out);
     return true;
   }
 
-  C counters;
-
  private:
-  // The closest hit after last_; hi shrinks to it, which culls farther nodes.
+  // The closest hit after the last one returned; hi shrinks to it, which culls farther nodes.
   struct Closest : TraversalPolicy<T> {
     const RestartKernel& k;
     T lo_, hi_;
@@ -50,19 +44,13 @@ class RestartKernel {
     T cull_bound() const { return hi_; }
     void hit(const TriBlock<T>& b, int l, const TriangleHit<T>& h) {
       const Hit key = order_key(b, l, h);
-      if (k.have_last_ && !k.order_.less(k.last_, key)) return;
+      if (k.resume_.done(k.order_, key)) return;
       if (block != nullptr && !k.order_.less(key, best)) return;
       best = key, block = &b, lane = l, th = h, hi_ = h.t;
     }
   };
 
-  const WideBvh<T>* bvh_;
-  HitOrder order_;
-  SimdLevel simd_;
-  TraversalRay<T> ray_;
-  Hit last_;
-  bool have_last_ = false;
-  NodeStack<T> stack_;
+  ResumeAfter resume_;
 };
 
 }  // namespace pierce

@@ -1,0 +1,61 @@
+#pragma once
+// What every kernel on Pierce's wide BVH holds and does the same way: the BVH, the hit order, the
+// SIMD level (chosen once), the prepared ray, the pending nodes (a depth-first stack or, for
+// `queue`, a front-to-back heap), the counter policy, and how a traversal is seeded and run. The
+// kernels differ only in their traversal policy and in what they keep between next() calls.
+#include <algorithm>
+
+#include "pierce/hit.h"
+#include "pierce/traverse.h"
+
+namespace pierce {
+
+// The last hit a kernel returned: the next one must come after it in the total order, so the
+// search resumes at its t and skips what ranks at or before it.
+struct ResumeAfter {
+  Hit last;
+  bool have = false;
+
+  void clear() { have = false; }
+  void set(const Hit& h) { last = h, have = true; }
+  // True if `key` was returned already or ranks before what was.
+  bool done(const HitOrder& order, const Hit& key) const { return have && !order.less(last, key); }
+  template <typename T>
+  T lower(T tmin) const {
+    return have ? std::max(tmin, T(last.t)) : tmin;
+  }
+};
+
+// C: the counter policy (counters.h); Pending: NodeStack<T> or NodeHeap<T>.
+template <typename T, class C, class Pending = NodeStack<T>>
+class WideKernel {
+ public:
+  C counters;
+
+ protected:
+  WideKernel(const WideBvh<T>& bvh, HitOrder order) : bvh_(&bvh), order_(order), simd_(simd_level()) {
+    // A heap holds the untraversed nodes of every level, not one path's siblings: more room.
+    pending_.reserve((Pending::kOrdered ? 4 : 1) * bvh.stack_capacity());
+  }
+
+  void prepare(const Ray& ray) { ray_ = TraversalRay<T>::make(ray, bvh_->scene_max_abs); }
+  bool traceable() const { return !bvh_->empty() && ray_.valid(); }
+  // A new traversal of [lo, hi] from the root.
+  void seed_root(T lo, T hi) {
+    pending_.clear();
+    seed(*bvh_, ray_, lo, hi, pending_, counters);
+  }
+  // Traverses until every pending node is done (true) or the policy suspends (false).
+  template <class Policy>
+  bool run(Policy& p) {
+    return traverse(simd_, *bvh_, ray_, pending_, p, counters);
+  }
+
+  const WideBvh<T>* bvh_;
+  HitOrder order_;
+  SimdLevel simd_;
+  TraversalRay<T> ray_;
+  Pending pending_;
+};
+
+}  // namespace pierce
