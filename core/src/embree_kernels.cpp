@@ -187,6 +187,24 @@ bool EmbreeNodeCullKernel::next(Hit& out) {
   return true;
 }
 
+namespace {
+// A query of Embree's native triangles for `ray` from tnear (float, as Embree takes it).
+RTCRayHit native_rayhit(const Ray& ray, float tnear) {
+  RTCRayHit rh;
+  rh.ray.org_x = float(ray.org.x), rh.ray.org_y = float(ray.org.y), rh.ray.org_z = float(ray.org.z);
+  rh.ray.dir_x = float(ray.dir.x), rh.ray.dir_y = float(ray.dir.y), rh.ray.dir_z = float(ray.dir.z);
+  rh.ray.tnear = tnear;
+  rh.ray.tfar = float(ray.tmax);
+  rh.ray.time = 0.f;
+  rh.ray.mask = 0xFFFFFFFFu;  // Debian's Embree is built with ray masks
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+}  // namespace
+
 EpsilonKernel::EpsilonKernel(const EmbreeAccel& acc, double epsilon_rel, bool count)
     : acc_(&acc), eps_(epsilon_rel * acc.scene().scale()), count_(count) {}
 
@@ -201,17 +219,7 @@ void EpsilonKernel::begin(const Ray& ray, std::size_t) {
 
 bool EpsilonKernel::next(Hit& out) {
   while (!done_) {
-    RTCRayHit rh;
-    rh.ray.org_x = float(ray_.org.x), rh.ray.org_y = float(ray_.org.y), rh.ray.org_z = float(ray_.org.z);
-    rh.ray.dir_x = float(ray_.dir.x), rh.ray.dir_y = float(ray_.dir.y), rh.ray.dir_z = float(ray_.dir.z);
-    rh.ray.tnear = tnear_;
-    rh.ray.tfar = float(ray_.tmax);
-    rh.ray.time = 0.f;
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    RTCRayHit rh = native_rayhit(ray_, tnear_);
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     rtcIntersect1(acc_->native(), &ctx, &rh);
@@ -246,17 +254,7 @@ bool embree_first_hit(const EmbreeAccel& acc, const Ray& ray, Hit& out) {
   if (!embree_representable(Vec3d(Vec3f(ray.org))) || !embree_representable(Vec3d(Vec3f(ray.dir))) ||
       empty_range(ray) || ray.tmax < 0)
     return false;
-  RTCRayHit rh;
-  rh.ray.org_x = float(ray.org.x), rh.ray.org_y = float(ray.org.y), rh.ray.org_z = float(ray.org.z);
-  rh.ray.dir_x = float(ray.dir.x), rh.ray.dir_y = float(ray.dir.y), rh.ray.dir_z = float(ray.dir.z);
-  rh.ray.tnear = float(std::max(0.0, ray.tmin));
-  rh.ray.tfar = float(ray.tmax);
-  rh.ray.time = 0.f;
-  rh.ray.mask = 0xFFFFFFFFu;
-  rh.ray.id = 0;
-  rh.ray.flags = 0;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  RTCRayHit rh = native_rayhit(ray, float(std::max(0.0, ray.tmin)));
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   rtcIntersect1(acc.native(), &ctx, &rh);
