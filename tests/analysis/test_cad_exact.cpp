@@ -19,6 +19,7 @@
 #include "pierce/analysis/thickness.h"
 #include "pierce/io/cad_surfaces.h"
 #include "pierce/io/model_io.h"
+#include "../common/process_temp_dir.h"
 #include "step_assembly.h"
 
 namespace pierce::test {
@@ -27,23 +28,7 @@ namespace {
 namespace fs = std::filesystem;
 using namespace pierce::analysis;
 
-fs::path temp_dir() {
-  static const fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / ("pierce_cad_exact_test_" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
-  return dir;
-}
-
-class TempDirCleanup : public ::testing::Environment {
- public:
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(temp_dir(), ec);
-  }
-};
-[[maybe_unused]] const ::testing::Environment* const kCleanup = ::testing::AddGlobalTestEnvironment(new TempDirCleanup);
+const fs::path& temp_dir() { return process_temp_dir("pierce_cad_exact_test_"); }
 
 struct Loaded {
   Scene scene;
