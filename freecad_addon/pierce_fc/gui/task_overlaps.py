@@ -35,15 +35,11 @@ class OverlapPanel(PanelBase):
         f.addRow(self.markers)
 
     def build_results(self, layout):
-        self.table = QtWidgets.QTableWidget(0, len(COLUMNS))
-        self.table.setHorizontalHeaderLabels(COLUMNS)
+        self.table = self.results_table(layout, COLUMNS)
         self.table.setSelectionBehavior(QtWidgets.QAbstractItemView.SelectRows)
         self.table.setSelectionMode(QtWidgets.QAbstractItemView.SingleSelection)
-        self.table.setEditTriggers(QtWidgets.QAbstractItemView.NoEditTriggers)
         self.table.horizontalHeader().setStretchLastSection(True)
-        self.table.setMinimumHeight(160)
         self.table.itemSelectionChanged.connect(self.on_row)
-        layout.addWidget(self.table)
 
     def compute(self, progress, cancel):
         objects = self.solids_to_analyse(self.whole_document.isChecked())

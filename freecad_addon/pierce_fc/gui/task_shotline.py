@@ -45,11 +45,7 @@ class ShotlinePanel(PanelBase):
         f.addRow(self.markers)
 
     def build_results(self, layout):
-        self.table = QtWidgets.QTableWidget(0, len(COLUMNS))
-        self.table.setHorizontalHeaderLabels(COLUMNS)
-        self.table.setEditTriggers(QtWidgets.QAbstractItemView.NoEditTriggers)
-        self.table.setMinimumHeight(160)
-        layout.addWidget(self.table)
+        self.table = self.results_table(layout, COLUMNS)
 
     def on_pick(self):
         for sel in Gui.Selection.getSelectionEx():
