@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_timing.h"
 #include "pierce/analysis/thickness.h"
 #include "pierce/generators.h"
 #include "pierce/kernel.h"
@@ -35,17 +36,6 @@
 
 namespace pierce::bench {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-// CPU time of this thread: on a shared, loaded machine far steadier than wall time.
-double thread_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
 
 struct World {
   std::string name;

@@ -19,13 +19,13 @@
 #include <vector>
 
 #include "bench_machine.h"
+#include "bench_timing.h"
 #include "pierce/analysis/effects.h"
 #include "pierce/generators.h"
 
 namespace pierce::bench {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using namespace pierce::analysis;
 
 struct Case {
