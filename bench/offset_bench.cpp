@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_main.h"
 #include "bench_timing.h"
 #include "pierce/analysis/thickness.h"
 #include "pierce/generators.h"
@@ -267,12 +268,7 @@ std::string num(double v, const char* fmt = "%.1f") {
   return buf;
 }
 
-}  // namespace
-}  // namespace pierce::bench
-
-int main(int argc, char** argv) {
-  using namespace pierce;
-  using namespace pierce::bench;
+int run(int argc, char** argv) {
   CLI::App app{"Origin offsets (Zoet): traversal work and time with each hemisphere set"};
   std::size_t rays = 20000, thickness_limit = 20000;
   int reps = 3, blob_level = 5, grid_n = 10, k = 8;
@@ -389,3 +385,8 @@ int main(int argc, char** argv) {
   std::printf("\nresult mismatches with/without offsets: %zu\n", total_mismatch);
   return total_mismatch == 0 ? 0 : 1;
 }
+
+}  // namespace
+}  // namespace pierce::bench
+
+int main(int argc, char** argv) { return pierce::bench::guarded_main(argc, argv, pierce::bench::run); }
