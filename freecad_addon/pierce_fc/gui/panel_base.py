@@ -158,6 +158,15 @@ def selected_objects():
     return list(Gui.Selection.getSelection())
 
 
+def check_box(text, checked=False, tooltip=None):
+    """A QCheckBox labelled `text`, ticked when `checked`."""
+    w = QtWidgets.QCheckBox(text)
+    w.setChecked(checked)
+    if tooltip:
+        w.setToolTip(tooltip)
+    return w
+
+
 def double_spin(value, minimum, maximum, decimals=4, suffix=" mm", special=None, step=None):
     w = QtWidgets.QDoubleSpinBox()
     w.setDecimals(decimals)

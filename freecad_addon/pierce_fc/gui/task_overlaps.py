@@ -5,7 +5,7 @@ import FreeCADGui as Gui
 
 from .. import overlap_check
 from ..overlap_check import OverlapOptions
-from .panel_base import PanelBase, double_spin
+from .panel_base import PanelBase, check_box, double_spin
 from .qt import QtWidgets
 
 COLUMNS = ["Finding", "Solid A", "Solid B", "Depth (mm)", "Area (mm²)", "Faces"]
@@ -17,8 +17,9 @@ class OverlapPanel(PanelBase):
 
     def build_options(self, layout):
         f = self.options_form(layout, "Options")
-        self.whole_document = QtWidgets.QCheckBox("All visible solids of the document")
-        self.whole_document.setToolTip("Otherwise the selected solids (a group or App::Part selects its contents)")
+        self.whole_document = check_box(
+            "All visible solids of the document",
+            tooltip="Otherwise the selected solids (a group or App::Part selects its contents)")
         self.tolerance = double_spin(1e-3, 0.0, 1e6, decimals=6, special="exact only", step=1e-3)
         self.tolerance.setToolTip("Faces closer than this to each other's plane count as coplanar")
         self.grid = QtWidgets.QSpinBox()
@@ -26,8 +27,7 @@ class OverlapPanel(PanelBase):
         self.grid.setValue(64)
         self.grid.setToolTip("Interference is looked for along grid x grid rays in each axis direction")
         self.deflection = double_spin(0.0, 0.0, 1e6, special="automatic (0.1% of size)", step=0.01)
-        self.markers = QtWidgets.QCheckBox("Add markers to the document")
-        self.markers.setChecked(True)
+        self.markers = check_box("Add markers to the document", True)
         f.addRow(self.whole_document)
         f.addRow("Coplanar tolerance", self.tolerance)
         f.addRow("Rays per side", self.grid)
