@@ -33,7 +33,6 @@ vtkTable* vtkPierceOverlaps::GetPairsOutput()
 int vtkPierceOverlaps::AnalyseSurfaces(
   pierce_vtk::SurfaceRun& run, vtkDataObject* input, vtkInformationVector* outputVector)
 {
-
   pierce_vtk::OverlapSettings settings;
   settings.find_coplanar = this->FindCoplanar;
   settings.tolerance = this->Tolerance;
