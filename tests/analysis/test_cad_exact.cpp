@@ -146,6 +146,9 @@ struct BrepTrueCase {
   double wall_min;
 };
 
+// Without it, GoogleTest prints the case's bytes (pointers included) into the test's name.
+void PrintTo(const BrepTrueCase& c, std::ostream* os) { *os << c.name; }
+
 class CadExactBrepTrue : public ::testing::TestWithParam<BrepTrueCase> {};
 
 TEST_P(CadExactBrepTrue, SamplesAreBrepTrue) {
