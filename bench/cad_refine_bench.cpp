@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "bench_machine.h"
+#include "bench_timing.h"
 #include "pierce/analysis/thickness.h"
 #include "pierce/io/cad_surfaces.h"
 #include "pierce/io/model_io.h"
@@ -27,12 +28,6 @@
 
 namespace pierce::bench {
 namespace {
-
-double thread_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
 
 template <class F>
 double best_of(int reps, F&& f) {

@@ -29,9 +29,10 @@
 #include <thread>
 #include <vector>
 
-#include "bench_main.h"
 #include "bench_machine.h"
+#include "bench_main.h"
 #include "bench_scenes.h"
+#include "bench_timing.h"
 #include "embree_reference.h"
 #include "pierce/bvh_builder.h"
 #include "pierce/kernel.h"
@@ -40,10 +41,7 @@
 namespace pierce::bench {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using nlohmann::json;
-
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // ---------------------------------------------------------------- machine
 

@@ -28,6 +28,8 @@
 #include <string>
 #include <vector>
 
+#include "bench_main.h"
+#include "bench_timing.h"
 #include "pierce/analysis/thickness.h"
 #include "pierce/generators.h"
 #include "pierce/kernel.h"
@@ -35,17 +37,6 @@
 
 namespace pierce::bench {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-// CPU time of this thread: on a shared, loaded machine far steadier than wall time.
-double thread_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
 
 struct World {
   std::string name;
@@ -277,12 +268,7 @@ std::string num(double v, const char* fmt = "%.1f") {
   return buf;
 }
 
-}  // namespace
-}  // namespace pierce::bench
-
-int main(int argc, char** argv) {
-  using namespace pierce;
-  using namespace pierce::bench;
+int run(int argc, char** argv) {
   CLI::App app{"Origin offsets (Zoet): traversal work and time with each hemisphere set"};
   std::size_t rays = 20000, thickness_limit = 20000;
   int reps = 3, blob_level = 5, grid_n = 10, k = 8;
@@ -399,3 +385,8 @@ int main(int argc, char** argv) {
   std::printf("\nresult mismatches with/without offsets: %zu\n", total_mismatch);
   return total_mismatch == 0 ? 0 : 1;
 }
+
+}  // namespace
+}  // namespace pierce::bench
+
+int main(int argc, char** argv) { return pierce::bench::guarded_main(argc, argv, pierce::bench::run); }

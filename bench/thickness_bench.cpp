@@ -18,8 +18,9 @@
 #include <iostream>
 #include <string>
 
-#include "bench_main.h"
 #include "bench_machine.h"
+#include "bench_main.h"
+#include "bench_timing.h"
 #include "embree_reference.h"
 #include "pierce/analysis/thickness.h"
 #include "pierce/generators.h"
@@ -28,9 +29,6 @@
 
 namespace pierce::bench {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 double peak_rss_mb() {
   rusage u{};

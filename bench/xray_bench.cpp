@@ -19,13 +19,14 @@
 #include <vector>
 
 #include "bench_machine.h"
+#include "bench_main.h"
+#include "bench_timing.h"
 #include "pierce/analysis/effects.h"
 #include "pierce/generators.h"
 
 namespace pierce::bench {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using namespace pierce::analysis;
 
 struct Case {
@@ -56,12 +57,7 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-}  // namespace
-}  // namespace pierce::bench
-
-int main(int argc, char** argv) {
-  using namespace pierce;
-  using namespace pierce::bench;
+int run(int argc, char** argv) {
   CLI::App app{"X-ray effect with early exit: queue vs filter vs restart"};
   bool quick = false, force = false;
   int n = 512, reps = 3, threads = int(std::max(1u, std::thread::hardware_concurrency()));
@@ -149,3 +145,8 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+
+}  // namespace
+}  // namespace pierce::bench
+
+int main(int argc, char** argv) { return pierce::bench::guarded_main(argc, argv, pierce::bench::run); }

@@ -147,8 +147,7 @@ void write_json(std::FILE* f, const std::vector<Vec3d>& pts, const std::vector<T
 
 std::string output_format(const ClassifyCli& o) {
   if (!o.format.empty()) {
-    if (o.format != "table" && o.format != "csv" && o.format != "json")
-      throw InputError("--format '" + o.format + "': expected table, csv or json");
+    check_report_format(o.format);
     return o.format;
   }
   auto ends_with = [&](const char* ext) {
@@ -196,20 +195,17 @@ int run_classify(const ClassifyCli& o) {
   }
   bar.finish();
 
-  OutputFile out(o.out, o.force);
-  if (format == "table") write_table(out.stream(), pts, targets, classes);
-  else if (format == "csv") write_csv(out.stream(), pts, targets, classes);
-  else write_json(out.stream(), pts, targets, classes, !o.csg.empty(), classifiers.empty() ? 0 : classifiers[0]->tolerance());
-  if (interrupted()) return cancelled();
-  out.commit();
-  return 0;
+  return write_file(o.out, o.force, [&](std::FILE* out) {
+    if (format == "table") write_table(out, pts, targets, classes);
+    else if (format == "csv") write_csv(out, pts, targets, classes);
+    else write_json(out, pts, targets, classes, !o.csg.empty(), classifiers.empty() ? 0 : classifiers[0]->tolerance());
+  });
 }
 
 }  // namespace
 
 std::function<int()> register_classify(CLI::App& app) {
-  auto o = std::make_shared<ClassifyCli>();
-  CLI::App* cmd = app.add_subcommand(
+  const auto [o, cmd] = add_command<ClassifyCli>(app,
       "classify", "Inside / outside / on of points for every solid or CSG expression (ray partitions)");
   add_model_args(cmd, o->model, true);
   // One value per occurrence, so `--point 1,2,3 MODEL` does not read MODEL as a point.

@@ -173,17 +173,13 @@ int run_gqa_cmd(const GqaCli& o) {
     std::cerr << "pierce: warning: not converged within --max-n " << o.max_n << " (last worst change "
               << r.passes.back().worst_change << " on " << r.passes.back().worst << ")\n";
   if (o.json.empty()) return 0;
-  OutputFile out(o.json, o.force);
-  write_json(out.stream(), scene, r);
-  out.commit();
-  return 0;
+  return write_file(o.json, o.force, [&](std::FILE* out) { write_json(out, scene, r); });
 }
 
 }  // namespace
 
 std::function<int()> register_gqa(CLI::App& app) {
-  auto o = std::make_shared<GqaCli>();
-  CLI::App* cmd = app.add_subcommand(
+  const auto [o, cmd] = add_command<GqaCli>(app,
       "gqa", "Volume, centroid and surface crossings per solid from refined ray grids; overlaps and gaps (like "
              "BRL-CAD gqa)");
   add_model_args(cmd, o->model, true);

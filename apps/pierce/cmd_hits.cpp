@@ -311,8 +311,8 @@ int run_hits(const HitsOptions& o) {
 }  // namespace
 
 std::function<int()> register_hits(CLI::App& app) {
-  auto opts = std::make_shared<HitsOptions>();
-  CLI::App* cmd = app.add_subcommand("hits", "Every surface each ray crosses, in order (CSV: ray,t,geom,prim,u,v,enter)");
+  const auto [opts, cmd] = add_command<HitsOptions>(
+      app, "hits", "Every surface each ray crosses, in order (CSV: ray,t,geom,prim,u,v,enter)");
   // Geometry ids follow argument order: one per OBJ o/g group, one per CAD solid.
   add_model_args(cmd, opts->model, true);
   cmd->add_option("--rays", opts->rays,

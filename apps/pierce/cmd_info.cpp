@@ -107,9 +107,9 @@ int run_info(const InfoOptions& o) {
 }  // namespace
 
 std::function<int()> register_info(CLI::App& app) {
-  auto opts = std::make_shared<InfoOptions>();
-  CLI::App* cmd = app.add_subcommand("info", "Per solid: triangles, closed or open, non-manifold edges, degenerate "
-                                             "triangles, bounding box, units");
+  const auto [opts, cmd] = add_command<InfoOptions>(
+      app, "info",
+      "Per solid: triangles, closed or open, non-manifold edges, degenerate triangles, bounding box, units");
   add_model_args(cmd, opts->model, true);
   cmd->add_flag("--json", opts->json, "Print the report as JSON");
   return [opts] { return run_info(*opts); };

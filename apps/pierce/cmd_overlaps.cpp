@@ -246,8 +246,7 @@ int run_overlaps(const OverlapsCli& o) {
 }  // namespace
 
 std::function<int()> register_overlaps(CLI::App& app) {
-  auto o = std::make_shared<OverlapsCli>();
-  CLI::App* cmd = app.add_subcommand(
+  const auto [o, cmd] = add_command<OverlapsCli>(app,
       "overlaps", "Coplanar overlapping faces, coplanar-hit statistic and solid-solid interference along rays");
   add_model_args(cmd, o->model, true);
   cmd->add_option("--tol", o->tol,

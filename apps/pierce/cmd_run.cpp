@@ -268,8 +268,7 @@ int run_scene(const RunCli& o) {
 }  // namespace
 
 std::function<int()> register_run(CLI::App& app) {
-  auto o = std::make_shared<RunCli>();
-  CLI::App* cmd = app.add_subcommand(
+  const auto [o, cmd] = add_command<RunCli>(app,
       "run", "Run the effects a scene file requests (xray, transparency, penetration, thickness, overlaps, "
              "classification, first_hit), stopping each ray once they are settled (docs/CSG.md)");
   cmd->add_option("scene", o->scene, "Scene file (JSON)")->required();

@@ -168,8 +168,7 @@ void write_json(std::FILE* f, const Scene& s, const std::vector<Ray>& rays, cons
 
 int run_shot(const ShotCli& o) {
   InterruptGuard guard;
-  if (o.format != "table" && o.format != "csv" && o.format != "json")
-    throw InputError("--format '" + o.format + "': expected table, csv or json");
+  check_report_format(o.format);
   OutputFile::check_target(o.out, o.force);
   const KernelKind kernel = exact_kernel_option(o.kernel);
 
@@ -193,20 +192,17 @@ int run_shot(const ShotCli& o) {
     std::cerr << "pierce: warning: " << r.unmatched_leaves << " exits without entry and " << r.unclosed
               << " entries without exit (open or inverted meshes): those crossings claim nothing\n";
 
-  OutputFile out(o.out, o.force);
-  if (o.format == "table") write_table(out.stream(), scene, rays, r, so.csg);
-  else if (o.format == "csv") write_csv(out.stream(), scene, r, so.csg);
-  else write_json(out.stream(), scene, rays, r, so.csg);
-  if (interrupted()) return cancelled();
-  out.commit();
-  return 0;
+  return write_file(o.out, o.force, [&](std::FILE* out) {
+    if (o.format == "table") write_table(out, scene, rays, r, so.csg);
+    else if (o.format == "csv") write_csv(out, scene, r, so.csg);
+    else write_json(out, scene, rays, r, so.csg);
+  });
 }
 
 }  // namespace
 
 std::function<int()> register_shot(CLI::App& app) {
-  auto o = std::make_shared<ShotCli>();
-  CLI::App* cmd = app.add_subcommand(
+  const auto [o, cmd] = add_command<ShotCli>(app,
       "shot", "Shotlines (like BRL-CAD nirt): solids along rays with in/out points, line of sight, obliquity, "
               "normal thickness, gaps and overlaps");
   add_model_args(cmd, o->model, true);

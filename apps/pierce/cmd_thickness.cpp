@@ -370,8 +370,8 @@ int run_thickness(const ThicknessCli& o) {
 }  // namespace
 
 std::function<int()> register_thickness(CLI::App& app) {
-  auto o = std::make_shared<ThicknessCli>();
-  CLI::App* cmd = app.add_subcommand("thickness", "Wall-thickness map per vertex or face (VTP, CSV or JSON)");
+  const auto [o, cmd] =
+      add_command<ThicknessCli>(app, "thickness", "Wall-thickness map per vertex or face (VTP, CSV or JSON)");
   add_model_args(cmd, o->model, false);
   cmd->add_option("--method", o->method,
                   "ray: along the inward normal to where the ray leaves the solid; cone: shape diameter function "

@@ -32,4 +32,9 @@ KernelKind exact_kernel_option(const std::string& name) {
   return *kernel;
 }
 
+void check_report_format(const std::string& format) {
+  if (format != "table" && format != "csv" && format != "json")
+    throw InputError("--format '" + format + "': expected table, csv or json");
+}
+
 }  // namespace pierce::cli

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "interrupt.h"
@@ -28,16 +29,40 @@ void add_force_and_progress_flags(CLI::App* cmd, bool& force, bool& progress, co
 // an exact kernel" for an unknown or inexact one.
 KernelKind exact_kernel_option(const std::string& name);
 
-// Writes -o FILE (format != none) through write(format, stream); the file appears only when
-// complete and not after Ctrl-C. Returns the command's exit code (0, or kExitCancelled).
+// Writes `path` (stdout when empty) through write(stream); the file appears only when complete
+// and not after Ctrl-C. Returns the command's exit code (0, or kExitCancelled).
 template <class Write>
-int write_output(const std::string& path, Format format, bool force, Write write) {
-  if (format == Format::none) return 0;
+int write_file(const std::string& path, bool force, Write write) {
   OutputFile out(path, force);
-  write(format, out.stream());
+  write(out.stream());
   if (interrupted()) return cancelled();
   out.commit();
   return 0;
+}
+
+// Writes -o FILE (format != none) through write(format, stream), as write_file does.
+template <class Write>
+int write_output(const std::string& path, Format format, bool force, Write write) {
+  if (format == Format::none) return 0;
+  return write_file(path, force, [&](std::FILE* out) { write(format, out); });
+}
+
+// The text reports of `shot` and `classify`: throws InputError unless --format names one of
+// table, csv or json.
+void check_report_format(const std::string& format);
+
+// A subcommand being declared: the options its flags fill (shared with the callback that runs it)
+// and the CLI11 node the flags are added to.
+template <class Options>
+struct NewCommand {
+  std::shared_ptr<Options> options;
+  CLI::App* cmd;
+};
+
+// Adds subcommand `name` with a fresh, default Options.
+template <class Options>
+NewCommand<Options> add_command(CLI::App& app, const std::string& name, const std::string& description) {
+  return {std::make_shared<Options>(), app.add_subcommand(name, description)};
 }
 
 // Each returns the callback that runs the subcommand (after parsing) and returns its exit code.

@@ -35,33 +35,32 @@ pyb::array_t<T> vector_array(const std::vector<T>& v) {
   return a;
 }
 
+// A new numpy array with one Record per element of `items`, converted by to_record.
+template <class Record, class Item, class ToRecord>
+pyb::array_t<Record> record_array(const std::vector<Item>& items, ToRecord to_record) {
+  pyb::array_t<Record> a(static_cast<pyb::ssize_t>(items.size()));
+  Record* out = a.mutable_data();
+  for (std::size_t i = 0; i < items.size(); ++i) out[i] = to_record(items[i]);
+  return a;
+}
+
 template <typename T>
 pyb::array_t<std::uint64_t> offsets_array(const std::vector<T>& v) {
-  pyb::array_t<std::uint64_t> a(static_cast<pyb::ssize_t>(v.size()));
-  for (std::size_t i = 0; i < v.size(); ++i) a.mutable_data()[i] = static_cast<std::uint64_t>(v[i]);
-  return a;
+  return record_array<std::uint64_t>(v, [](const T& offset) { return static_cast<std::uint64_t>(offset); });
 }
 
 pyb::array_t<CoplanarPairRecord> coplanar_pairs_array(const CoplanarReport& r) {
-  pyb::array_t<CoplanarPairRecord> a(static_cast<pyb::ssize_t>(r.pairs.size()));
-  CoplanarPairRecord* out = a.mutable_data();
-  for (std::size_t i = 0; i < r.pairs.size(); ++i) {
-    const CoplanarPair& p = r.pairs[i];
-    out[i] = {p.geom_a, p.prim_a, p.geom_b, p.prim_b, p.area, {p.centroid.x, p.centroid.y, p.centroid.z},
-              p.exact, p.same_facing};
-  }
-  return a;
+  return record_array<CoplanarPairRecord>(r.pairs, [](const CoplanarPair& p) {
+    return CoplanarPairRecord{p.geom_a, p.prim_a, p.geom_b, p.prim_b, p.area,
+                              {p.centroid.x, p.centroid.y, p.centroid.z}, p.exact, p.same_facing};
+  });
 }
 
 pyb::array_t<InterferenceRecord> intervals_array(const RayOverlapReport& r) {
-  pyb::array_t<InterferenceRecord> a(static_cast<pyb::ssize_t>(r.intervals.size()));
-  InterferenceRecord* out = a.mutable_data();
-  for (std::size_t i = 0; i < r.intervals.size(); ++i) {
-    const Interference& x = r.intervals[i];
-    out[i] = {x.ray, x.a, x.b, x.t_enter, x.t_exit, x.depth, {x.entry.x, x.entry.y, x.entry.z},
-              {x.exit.x, x.exit.y, x.exit.z}};
-  }
-  return a;
+  return record_array<InterferenceRecord>(r.intervals, [](const Interference& x) {
+    return InterferenceRecord{x.ray, x.a, x.b, x.t_enter, x.t_exit, x.depth, {x.entry.x, x.entry.y, x.entry.z},
+                              {x.exit.x, x.exit.y, x.exit.z}};
+  });
 }
 
 }  // namespace

@@ -96,26 +96,14 @@ void bind_thickness(pyb::module_& m) {
       .def_readonly("completed", &ThicknessResult::completed)
       .def_readonly("solids", &ThicknessResult::solids, "per-solid statistics (SolidThickness)")
       .def("__len__", &ThicknessResult::size)
-      .def_property_readonly("solid", [](pyb::object self) {
-        const auto& r = self.cast<const ThicknessResult&>();
-        return readonly_view(r.solid.data(), r.solid.size(), 0, self);
-      }, "(N,) uint32 geometry id")
-      .def_property_readonly("element", [](pyb::object self) {
-        const auto& r = self.cast<const ThicknessResult&>();
-        return readonly_view(r.element.data(), r.element.size(), 0, self);
-      }, "(N,) uint32 vertex or triangle index")
-      .def_property_readonly("point", [](pyb::object self) {
-        const auto& r = self.cast<const ThicknessResult&>();
-        return readonly_view(r.point.empty() ? nullptr : &r.point.data()->x, r.point.size(), 3, self);
-      }, "(N, 3) sample points")
-      .def_property_readonly("normal", [](pyb::object self) {
-        const auto& r = self.cast<const ThicknessResult&>();
-        return readonly_view(r.normal.empty() ? nullptr : &r.normal.data()->x, r.normal.size(), 3, self);
-      }, "(N, 3) unit outward normals (zero where none)")
-      .def_property_readonly("thickness", [](pyb::object self) {
-        const auto& r = self.cast<const ThicknessResult&>();
-        return readonly_view(r.thickness.data(), r.thickness.size(), 0, self);
-      }, "(N,) float64, NaN where there is none")
+      .def_property_readonly("solid", readonly_column(&ThicknessResult::solid), "(N,) uint32 geometry id")
+      .def_property_readonly("element", readonly_column(&ThicknessResult::element),
+                             "(N,) uint32 vertex or triangle index")
+      .def_property_readonly("point", readonly_column(&ThicknessResult::point), "(N, 3) sample points")
+      .def_property_readonly("normal", readonly_column(&ThicknessResult::normal),
+                             "(N, 3) unit outward normals (zero where none)")
+      .def_property_readonly("thickness", readonly_column(&ThicknessResult::thickness),
+                             "(N,) float64, NaN where there is none")
       .def_property_readonly("thin", [](pyb::object self) {
         const auto& r = self.cast<const ThicknessResult&>();
         static_assert(sizeof(bool) == sizeof(std::uint8_t));
@@ -128,11 +116,9 @@ void bind_thickness(pyb::module_& m) {
         static_assert(sizeof(ThicknessStatus) == sizeof(std::uint8_t));
         return readonly_view(reinterpret_cast<const std::uint8_t*>(r.status.data()), r.status.size(), 0, self);
       }, "(N,) uint8: 0 ok, 1 no_exit, 2 no_normal, 3 tessellation (see THICKNESS_STATUS)")
-      .def_property_readonly("brep_faces", [](pyb::object self) {
-        const auto& r = self.cast<const ThicknessResult&>();
-        return readonly_view(r.brep_faces.data(), r.brep_faces.size(), 0, self);
-      }, "(N,) uint8 CAD: B-rep faces sampled at the element (2+: a vertex on an edge, the smallest kept); "
-         "empty for meshes")
+      .def_property_readonly("brep_faces", readonly_column(&ThicknessResult::brep_faces),
+                             "(N,) uint8 CAD: B-rep faces sampled at the element (2+: a vertex on an edge, the "
+                             "smallest kept); empty for meshes")
       .def("__repr__", [](const ThicknessResult& r) {
         return "<pierce.ThicknessResult " + std::to_string(r.size()) + " " +
                (r.per == SampleAt::vertex ? "vertices" : "faces") + ", " + std::to_string(r.solids.size()) +

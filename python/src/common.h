@@ -8,6 +8,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "pierce/analysis/exact_surface.h"
@@ -75,6 +76,17 @@ pyb::array readonly_view(const T* data, std::size_t count, std::size_t cols, con
   pyb::array a(pyb::dtype::of<T>(), shape, strides, data, owner);
   a.attr("flags").attr("writeable") = false;
   return a;
+}
+
+// The getter of a read-only property viewing the vector member `column` of the bound object
+// (kept alive by the view): (N,) for numbers, (N, 3) for Vec3 rows.
+template <class Owner, class Element>
+auto readonly_column(std::vector<Element> Owner::*column) {
+  return [column](pyb::object self) {
+    const std::vector<Element>& v = self.cast<const Owner&>().*column;
+    if constexpr (std::is_arithmetic_v<Element>) return readonly_view(v.data(), v.size(), 0, self);
+    else return readonly_view(v.empty() ? nullptr : &v.data()->x, v.size(), 3, self);
+  };
 }
 
 KernelKind kernel_from_name(const std::string& name);

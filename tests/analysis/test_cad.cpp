@@ -28,6 +28,7 @@
 #include "pierce/error.h"
 #include "pierce/io/cad_io.h"
 #include "pierce/io/model_io.h"
+#include "../common/process_temp_dir.h"
 #include "step_assembly.h"
 
 namespace pierce::test {
@@ -36,24 +37,7 @@ namespace {
 namespace fs = std::filesystem;
 using namespace pierce::analysis;
 
-fs::path temp_dir() {
-  static const fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / ("pierce_cad_test_" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
-  return dir;
-}
-
-// Removes the temporary directory when the test program ends.
-class TempDirCleanup : public ::testing::Environment {
- public:
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(temp_dir(), ec);
-  }
-};
-[[maybe_unused]] const ::testing::Environment* const kCleanup = ::testing::AddGlobalTestEnvironment(new TempDirCleanup);
+const fs::path& temp_dir() { return process_temp_dir("pierce_cad_test_"); }
 
 // The tests' STEP assembly (tests/occt/step_assembly.h): a 10 x 10 x 2 plate at the origin; the part
 // "block" (2 x 2 x 2) placed twice on top of it, touching; "clash" (2 x 2 x 2) sunk 0.5 into the plate.

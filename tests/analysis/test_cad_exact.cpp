@@ -19,6 +19,7 @@
 #include "pierce/analysis/thickness.h"
 #include "pierce/io/cad_surfaces.h"
 #include "pierce/io/model_io.h"
+#include "../common/process_temp_dir.h"
 #include "step_assembly.h"
 
 namespace pierce::test {
@@ -27,23 +28,7 @@ namespace {
 namespace fs = std::filesystem;
 using namespace pierce::analysis;
 
-fs::path temp_dir() {
-  static const fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / ("pierce_cad_exact_test_" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
-  return dir;
-}
-
-class TempDirCleanup : public ::testing::Environment {
- public:
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(temp_dir(), ec);
-  }
-};
-[[maybe_unused]] const ::testing::Environment* const kCleanup = ::testing::AddGlobalTestEnvironment(new TempDirCleanup);
+const fs::path& temp_dir() { return process_temp_dir("pierce_cad_exact_test_"); }
 
 struct Loaded {
   Scene scene;
@@ -153,29 +138,33 @@ void expect_b_rep_true(const TopoDS_Shape& shape, const std::string& name, Sampl
             << chk.folded << " left, " << chk.slivers << " slivers, " << chk.remesh_rounds << " remesh rounds\n";
 }
 
-TEST(CadExact, BentSheetFaceSamplesAreBrepTrue) {
-  expect_b_rep_true(test_models::bent_sheet(), "sheet_face", SampleAt::face, 0.5);
+// One model sampled one way, with the model's thinnest wall.
+struct BrepTrueCase {
+  const char* name;  // also names the test and the model's file
+  TopoDS_Shape (*model)();
+  SampleAt per;
+  double wall_min;
+};
+
+// Without it, GoogleTest prints the case's bytes (pointers included) into the test's name.
+void PrintTo(const BrepTrueCase& c, std::ostream* os) { *os << c.name; }
+
+class CadExactBrepTrue : public ::testing::TestWithParam<BrepTrueCase> {};
+
+TEST_P(CadExactBrepTrue, SamplesAreBrepTrue) {
+  const BrepTrueCase& c = GetParam();
+  expect_b_rep_true(c.model(), c.name, c.per, c.wall_min);
 }
 
-TEST(CadExact, BentSheetVertexSamplesAreBrepTrue) {
-  expect_b_rep_true(test_models::bent_sheet(), "sheet_vertex", SampleAt::vertex, 0.5);
-}
-
-TEST(CadExact, FilletedBoxFaceSamplesAreBrepTrue) {
-  expect_b_rep_true(test_models::filleted_box(), "box_face", SampleAt::face, 1.0);
-}
-
-TEST(CadExact, FilletedBoxVertexSamplesAreBrepTrue) {
-  expect_b_rep_true(test_models::filleted_box(), "box_vertex", SampleAt::vertex, 1.0);
-}
-
-TEST(CadExact, HollowTorusFaceSamplesAreBrepTrue) {
-  expect_b_rep_true(test_models::hollow_torus(), "torus_face", SampleAt::face, 0.2);
-}
-
-TEST(CadExact, HollowTorusVertexSamplesAreBrepTrue) {
-  expect_b_rep_true(test_models::hollow_torus(), "torus_vertex", SampleAt::vertex, 0.2);
-}
+INSTANTIATE_TEST_SUITE_P(Models, CadExactBrepTrue,
+                         ::testing::Values(BrepTrueCase{"sheet_face", test_models::bent_sheet, SampleAt::face, 0.5},
+                                           BrepTrueCase{"sheet_vertex", test_models::bent_sheet, SampleAt::vertex, 0.5},
+                                           BrepTrueCase{"box_face", test_models::filleted_box, SampleAt::face, 1.0},
+                                           BrepTrueCase{"box_vertex", test_models::filleted_box, SampleAt::vertex, 1.0},
+                                           BrepTrueCase{"torus_face", test_models::hollow_torus, SampleAt::face, 0.2},
+                                           BrepTrueCase{"torus_vertex", test_models::hollow_torus, SampleAt::vertex,
+                                                        0.2}),
+                         [](const ::testing::TestParamInfo<BrepTrueCase>& info) { return std::string(info.param.name); });
 
 // The thin plate with tiny blends: its mesh alone reads walls far under the sheet's 0.3 (where
 // rays start on the blends' chords); on the B-rep every valid sample is B-rep true and the

@@ -1,6 +1,8 @@
 """Tiny test harness for freecadcmd scripts: freecadcmd exits 0 even when a script raises, so each
-script collects failures with Checker and ends with raise SystemExit(code) through run()."""
+script collects failures with Checker and ends with raise SystemExit(code) through run(). GUI
+scripts (the freecad binary) start theirs with run_in_gui()."""
 import math
+import os
 import sys
 import traceback
 
@@ -49,3 +51,24 @@ def run(name, body):
     print("%s: %d checks, %d failures" % (name, c.checks, c.failures), flush=True)
     sys.stdout.flush()
     raise SystemExit(1 if c.failures or c.checks == 0 else 0)
+
+
+def run_in_gui(name, body):
+    """For scripts run by the freecad GUI: runs run(name, body) once the event loop has started
+    (the workbenches and the 3D view need it), then ends the process with run's code: os._exit,
+    since a SystemExit raised inside the event loop does not end the GUI."""
+    from PySide2 import QtCore
+
+    def main():
+        code = 1
+        try:
+            run(name, body)
+        except SystemExit as e:
+            code = e.code
+        except BaseException:
+            traceback.print_exc()
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(code)
+
+    QtCore.QTimer.singleShot(0, main)

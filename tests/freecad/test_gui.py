@@ -6,7 +6,6 @@ view (checked not blank) plus one of the whole window, into $PIERCE_TEST_OUT.
 """
 import os
 import sys
-import traceback
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import fc_check  # noqa: E402
@@ -180,18 +179,4 @@ def body(c):
     Gui.Control.closeDialog()
 
 
-def main():
-    code = 1
-    try:
-        fc_check.run("gui", body)
-    except SystemExit as e:
-        code = e.code
-    except BaseException:
-        traceback.print_exc()
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(code)
-
-
-from PySide2 import QtCore  # noqa: E402
-QtCore.QTimer.singleShot(0, main)
+fc_check.run_in_gui("gui", body)

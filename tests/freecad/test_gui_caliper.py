@@ -6,7 +6,6 @@ the panel's summary; with it off, selections are not read.
 """
 import os
 import sys
-import traceback
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import fc_check  # noqa: E402
@@ -46,18 +45,4 @@ def body(c):
     Gui.Control.closeDialog()
 
 
-def main():
-    code = 1
-    try:
-        fc_check.run("gui_caliper", body)
-    except SystemExit as e:
-        code = e.code
-    except BaseException:
-        traceback.print_exc()
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(code)
-
-
-from PySide2 import QtCore  # noqa: E402
-QtCore.QTimer.singleShot(0, main)
+fc_check.run_in_gui("gui_caliper", body)

@@ -168,6 +168,18 @@ std::vector<Ray> rays_through_targets(const std::vector<Vec3d>& targets, const B
 
 // ---------------------------------------------------------------------------------------------
 
+// The triangles of the unit box gen::box({0, 0, 0}, {1, 1, 1}) except its top face (z = 1), for
+// the cases that replace the top by a mesh of their own.
+std::vector<Tri> triangles_below_top(const Mesh& box) {
+  std::vector<Tri> tris;
+  for (const Tri& t : box.triangles) {
+    bool top = true;
+    for (auto i : t) top = top && box.vertices[i].z == 1.0;
+    if (!top) tris.push_back(t);
+  }
+  return tris;
+}
+
 std::vector<Case> coplanar_duplicates(const Options& o) {
   std::vector<Case> out;
   const Mesh box = gen::box({0, 0, 0}, {1, 1, 1});
@@ -270,12 +282,7 @@ std::vector<Case> t_junctions(const Options& o) {
     // One closed box whose top face is split into four quads while the sides are not: the
     // top's edge midpoints are T-junctions on the box's edges.
     Mesh box = gen::box({0, 0, 0}, {1, 1, 1});
-    std::vector<Tri> tris;
-    for (const Tri& t : box.triangles) {
-      bool top = true;
-      for (auto i : t) top = top && box.vertices[i].z == 1.0;
-      if (!top) tris.push_back(t);
-    }
+    std::vector<Tri> tris = triangles_below_top(box);
     auto vid = [&](Vec3d p) {
       for (std::uint32_t i = 0; i < box.vertices.size(); ++i)
         if (box.vertices[i] == p) return i;
@@ -405,12 +412,7 @@ std::vector<Case> slivers(const Options& o) {
   Mesh box = gen::box({0, 0, 0}, {1, 1, 1});
   // Replace the top face by a fan around f = (0.5, ulp, 1), next to e = (0.5, 0, 1) on the
   // edge: (a, e, f) and (e, b, f) are slivers of width one ulp.
-  std::vector<Tri> tris;
-  for (const Tri& t : box.triangles) {
-    bool top = true;
-    for (auto i : t) top = top && box.vertices[i].z == 1.0;
-    if (!top) tris.push_back(t);
-  }
+  std::vector<Tri> tris = triangles_below_top(box);
   const std::uint32_t a = 4, b = 5, c = 7, d = 6;  // gen::box's top corners (0,0) (1,0) (1,1) (0,1)
   box.vertices.push_back({0.5, 0, 1});
   box.vertices.push_back({0.5, ulp, 1});

@@ -91,13 +91,21 @@ TopoDS_Shape bent_sheet() {
   return BRepPrimAPI_MakePrism(face, gp_Vec(0, 8, 0)).Shape();
 }
 
-TopoDS_Shape filleted_box() {
-  const TopoDS_Shape box = BRepPrimAPI_MakeBox(10, 8, 6).Shape();
-  BRepFilletAPI_MakeFillet f(box);
-  for (TopExp_Explorer ex(box, TopAbs_EDGE); ex.More(); ex.Next()) f.Add(1.0, TopoDS::Edge(ex.Current()));
+namespace {
+
+// `shape` with every edge blended by a fillet of `radius`; `model` names the model in the error.
+TopoDS_Shape with_all_edges_filleted(const TopoDS_Shape& shape, double radius, const char* model) {
+  BRepFilletAPI_MakeFillet f(shape);
+  for (TopExp_Explorer ex(shape, TopAbs_EDGE); ex.More(); ex.Next()) f.Add(radius, TopoDS::Edge(ex.Current()));
   f.Build();
-  if (!f.IsDone()) throw std::runtime_error("filleted_box: fillet failed");
+  if (!f.IsDone()) throw std::runtime_error(std::string(model) + ": fillet failed");
   return f.Shape();
+}
+
+}  // namespace
+
+TopoDS_Shape filleted_box() {
+  return with_all_edges_filleted(BRepPrimAPI_MakeBox(10, 8, 6).Shape(), 1.0, "filleted_box");
 }
 
 TopoDS_Shape hollow_torus() {
@@ -110,13 +118,10 @@ TopoDS_Shape hollow_torus() {
 }
 
 TopoDS_Shape thin_blended_plate() {
-  const TopoDS_Shape box = BRepPrimAPI_MakeBox(30, 30, 0.3).Shape();
-  BRepFilletAPI_MakeFillet f(box);
-  for (TopExp_Explorer ex(box, TopAbs_EDGE); ex.More(); ex.Next()) f.Add(0.01, TopoDS::Edge(ex.Current()));
-  f.Build();
-  if (!f.IsDone()) throw std::runtime_error("thin_blended_plate: fillet failed");
+  const TopoDS_Shape plate =
+      with_all_edges_filleted(BRepPrimAPI_MakeBox(30, 30, 0.3).Shape(), 0.01, "thin_blended_plate");
   const TopoDS_Shape hole = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(15, 15, -0.3), gp_Dir(0, 0, 1)), 3.75, 0.9).Shape();
-  BRepAlgoAPI_Cut cut(f.Shape(), hole);
+  BRepAlgoAPI_Cut cut(plate, hole);
   if (!cut.IsDone()) throw std::runtime_error("thin_blended_plate: hole failed");
   return cut.Shape();
 }

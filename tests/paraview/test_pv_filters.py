@@ -7,10 +7,14 @@ check each filter's arrays against the assembly's known geometry (tests/vtk/step
     pvbatch test_pv_filters.py --plugin PierceParaView.so --step assembly.step
 """
 import argparse
+import os
 import sys
 
 from paraview.simple import LoadPlugin, Line, OpenDataFile, Plane, UpdatePipeline
 from paraview import servermanager
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import pvbatch_main  # noqa: E402
 
 FAILURES = []
 
@@ -135,8 +139,4 @@ def main():
 
 
 if __name__ == "__main__":
-    # Fall off the end on success: sys.exit after rendering makes pvbatch tear the OpenGL context
-    # down after the X display and fail with GLXBadContext.
-    status = main()
-    if status:
-        sys.exit(status)
+    pvbatch_main.run(main)

@@ -12,6 +12,9 @@ from paraview.simple import (ColorBy, CreateView, GetColorTransferFunction, Load
                              ResetCamera, SaveScreenshot, Show)
 from vtkmodules.vtkIOImage import vtkPNGReader
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import pvbatch_main  # noqa: E402
+
 BACKGROUND = (1.0, 1.0, 1.0)
 
 
@@ -81,8 +84,4 @@ def main():
 
 
 if __name__ == "__main__":
-    # Fall off the end on success: sys.exit after rendering makes pvbatch tear the OpenGL context
-    # down after the X display and fail with GLXBadContext.
-    status = main()
-    if status:
-        sys.exit(status)
+    pvbatch_main.run(main)

@@ -103,10 +103,7 @@ TEST(VtkCadReader, FoldedTrianglesGiveTheTessellationStatus) {
   copy->DeepCopy(plate);
   vtkDataArray* marks = copy->GetCellData()->GetArray("TessellationFolded");
   marks->SetTuple1(0, 1);
-  auto f = vtkSmartPointer<vtkPierceThickness>::New();
-  f->SetInputData(copy);
-  f->SetSampleAt(vtkPierceThickness::CELLS);
-  f->Update();
+  auto f = thickness_per_cell(copy);
   vtkPolyData* out = vtkPolyData::SafeDownCast(f->GetOutputDataObject(0));
   ASSERT_NE(out, nullptr);
   vtkDataArray* status = out->GetCellData()->GetArray("ThicknessStatus");

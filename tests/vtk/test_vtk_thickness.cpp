@@ -56,10 +56,7 @@ void expect_box_widths(vtkPolyData* pd, Vec3d extent, const char* what) {
 TEST(VtkThickness, TouchingBoxesEachGetTheirOwnWidth) {
   // Two boxes sharing the face x = 1: each box's thickness is its own width, not the sum, not 0.
   auto mb = to_multiblock({gen::box({0, 0, 0}, {1, 2, 3}, "left"), gen::box({1, 0, 0}, {3, 2, 3}, "right")});
-  auto f = vtkSmartPointer<vtkPierceThickness>::New();
-  f->SetInputData(mb);
-  f->SetSampleAt(vtkPierceThickness::CELLS);
-  f->Update();
+  auto f = thickness_per_cell(mb);
   auto* out = vtkMultiBlockDataSet::SafeDownCast(f->GetOutputDataObject(0));
   ASSERT_NE(out, nullptr);
   ASSERT_EQ(out->GetNumberOfBlocks(), 2u);
@@ -76,10 +73,7 @@ TEST(VtkThickness, TouchingBoxesEachGetTheirOwnWidth) {
 }
 
 TEST(VtkThickness, DuplicatedCoplanarFaceGivesTheTrueWidth) {
-  auto f = vtkSmartPointer<vtkPierceThickness>::New();
-  f->SetInputData(to_polydata(gen::duplicated(gen::box({0, 0, 0}, {2, 1, 1}), 2, false)));
-  f->SetSampleAt(vtkPierceThickness::CELLS);
-  f->Update();
+  auto f = thickness_per_cell(to_polydata(gen::duplicated(gen::box({0, 0, 0}, {2, 1, 1}), 2, false)));
   auto* out = vtkPolyData::SafeDownCast(f->GetOutputDataObject(0));
   ASSERT_NE(out, nullptr);
   expect_box_widths(out, {2, 1, 1}, "duplicated box");
@@ -187,10 +181,7 @@ TEST(VtkThickness, EqualsTheCoreAnalysisOnTheSameTriangles) {
 TEST(VtkThickness, OpenMeshGivesNaNAndNoExitStatus) {
   gen::Mesh open = gen::box({0, 0, 0}, {1, 1, 1});
   open.triangles.resize(10);  // two faces' worth of triangles removed
-  auto f = vtkSmartPointer<vtkPierceThickness>::New();
-  f->SetInputData(to_polydata(open));
-  f->SetSampleAt(vtkPierceThickness::CELLS);
-  f->Update();
+  auto f = thickness_per_cell(to_polydata(open));
   auto* out = vtkPolyData::SafeDownCast(f->GetOutputDataObject(0));
   vtkDataArray* thickness = out->GetCellData()->GetArray("Thickness");
   vtkDataArray* status = out->GetCellData()->GetArray("ThicknessStatus");

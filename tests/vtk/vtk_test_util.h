@@ -15,6 +15,7 @@
 #include <vtkSmartPointer.h>
 
 #include "pierce/generators.h"
+#include "vtkPierceThickness.h"
 
 namespace pierce::vtk_test {
 
@@ -63,5 +64,14 @@ class MessageCollector : public vtkCommand {
   }
   std::vector<std::string> errors, warnings;
 };
+
+// vtkPierceThickness on `input`, per cell (the tests compare face values), already updated.
+inline vtkSmartPointer<vtkPierceThickness> thickness_per_cell(vtkDataObject* input) {
+  auto f = vtkSmartPointer<vtkPierceThickness>::New();
+  f->SetInputData(input);
+  f->SetSampleAt(vtkPierceThickness::CELLS);
+  f->Update();
+  return f;
+}
 
 }  // namespace pierce::vtk_test

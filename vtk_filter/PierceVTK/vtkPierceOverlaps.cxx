@@ -30,16 +30,9 @@ vtkTable* vtkPierceOverlaps::GetPairsOutput()
   return vtkTable::SafeDownCast(this->GetOutputDataObject(1));
 }
 
-int vtkPierceOverlaps::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkPierceOverlaps::AnalyseSurfaces(
+  pierce_vtk::SurfaceRun& run, vtkDataObject* input, vtkInformationVector* outputVector)
 {
-  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
-  pierce_vtk::SurfaceRun run;
-  if (!run.Gather(this, input, this->MaxReplicatedMB, false))
-  {
-    return 0;
-  }
-
   pierce_vtk::OverlapSettings settings;
   settings.find_coplanar = this->FindCoplanar;
   settings.tolerance = this->Tolerance;

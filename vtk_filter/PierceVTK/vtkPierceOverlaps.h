@@ -83,7 +83,8 @@ protected:
   vtkPierceOverlaps();
   ~vtkPierceOverlaps() override;
 
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int AnalyseSurfaces(
+    pierce_vtk::SurfaceRun& run, vtkDataObject* input, vtkInformationVector* outputVector) override;
 
   bool FindCoplanar;
   double Tolerance;

@@ -34,6 +34,18 @@ int vtkPierceSurfaceAlgorithm::RequestDataObject(
   return pierce_vtk::RequestSurfaceDataObject(inputVector, outputVector);
 }
 
+int vtkPierceSurfaceAlgorithm::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
+  pierce_vtk::SurfaceRun run;
+  if (!run.Gather(this, input, this->MaxReplicatedMB, false))
+  {
+    return 0;
+  }
+  return this->AnalyseSurfaces(run, input, outputVector);
+}
+
 void vtkPierceSurfaceAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

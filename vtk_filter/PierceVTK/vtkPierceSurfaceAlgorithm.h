@@ -5,8 +5,9 @@
  *
  * Holds what those filters share: input 0 is a vtkPolyData (one solid) or a composite data set
  * (one solid per non-empty block); output 0 has the input's structure (the triangulated
- * surfaces), output 1 is a vtkTable; and the MaxReplicatedMB limit for MPI runs. Subclasses
- * implement RequestData (see PierceVTKFilterSteps.h for the steps around the analysis).
+ * surfaces), output 1 is a vtkTable; the MaxReplicatedMB limit for MPI runs; and the first step
+ * of RequestData, gathering the surfaces. Subclasses implement AnalyseSurfaces, the rest (see
+ * PierceVTKFilterSteps.h for the steps around the analysis).
  */
 #ifndef vtkPierceSurfaceAlgorithm_h
 #define vtkPierceSurfaceAlgorithm_h
@@ -14,10 +15,15 @@
 #include "PierceVTKModule.h"
 #include "vtkDataObjectAlgorithm.h"
 
+namespace pierce_vtk
+{
+struct SurfaceRun;
+}
+
 class PIERCEVTK_EXPORT vtkPierceSurfaceAlgorithm : public vtkDataObjectAlgorithm
 {
 public:
-  vtkTypeMacro(vtkPierceSurfaceAlgorithm, vtkDataObjectAlgorithm);
+  vtkAbstractTypeMacro(vtkPierceSurfaceAlgorithm, vtkDataObjectAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -37,6 +43,15 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  // Gathers input 0's surfaces (collective), then hands them to AnalyseSurfaces.
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  /**
+   * The filter's own part of RequestData: analyses the gathered surfaces of `input` and fills the
+   * outputs. Returns RequestData's result.
+   */
+  virtual int AnalyseSurfaces(
+    pierce_vtk::SurfaceRun& run, vtkDataObject* input, vtkInformationVector* outputVector) = 0;
 
   double MaxReplicatedMB;
 

@@ -126,15 +126,9 @@ vtkTable* vtkPierceThickness::GetStatisticsOutput()
   return vtkTable::SafeDownCast(this->GetOutputDataObject(1));
 }
 
-int vtkPierceThickness::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkPierceThickness::AnalyseSurfaces(
+  pierce_vtk::SurfaceRun& run, vtkDataObject* input, vtkInformationVector* outputVector)
 {
-  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
-  pierce_vtk::SurfaceRun run;
-  if (!run.Gather(this, input, this->MaxReplicatedMB, false))
-  {
-    return 0;
-  }
   const pierce_vtk::Surfaces& surfaces = run.surfaces;
   pierce::analysis::ThicknessOptions options = ThicknessOptionsOf(*this);
   const bool perCell = this->SampleAt == CELLS;

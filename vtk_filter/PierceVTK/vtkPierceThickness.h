@@ -121,7 +121,8 @@ protected:
   vtkPierceThickness();
   ~vtkPierceThickness() override;
 
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int AnalyseSurfaces(
+    pierce_vtk::SurfaceRun& run, vtkDataObject* input, vtkInformationVector* outputVector) override;
 
   int Method;
   int SampleAt;

@@ -2,6 +2,7 @@
 
 #include "pierce/analysis/tie_distance.h"
 #include "pierce/parallel_for_items.h"
+#include "partition_walker.h"
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_reduce.h>
@@ -110,19 +111,12 @@ struct OpenPair {
   double t_in;
 };
 
-struct Worker {
-  HitIterator it;
-  PartitionBuilder builder;
+struct Worker : PartitionWalker {
   std::vector<CsgEvaluator> evals;
-  std::vector<Hit> hits;
-  RayPartitions parts;
-  std::vector<CsgInterval> intervals;
   std::vector<OpenPair> open, next_open;
   std::array<std::vector<ItemLength>, 2> lengths;  // of the two rays of a neighbour pair
 
-  Worker(const Accel& accel, const GqaOptions& o)
-      : it(accel, o.kernel, KernelOptions{HitOrder{TieOrder::leave_before_enter}}),
-        builder(accel.scene().geometries().size()) {
+  Worker(const Accel& accel, const GqaOptions& o) : PartitionWalker(accel, o.kernel) {
     for (const CsgExpr& e : o.regions) evals.emplace_back(e, accel.scene().geometries().size());
   }
 };

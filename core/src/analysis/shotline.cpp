@@ -2,6 +2,7 @@
 
 #include "pierce/analysis/tie_distance.h"
 #include "pierce/parallel_for_items.h"
+#include "partition_walker.h"
 
 #include <algorithm>
 #include <cmath>
@@ -16,20 +17,14 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 
-struct ShotWorker {
-  HitIterator it;
-  PartitionBuilder builder;
+struct ShotWorker : PartitionWalker {
   std::optional<CsgEvaluator> eval;
-  std::vector<Hit> hits;
-  RayPartitions parts;
-  std::vector<CsgInterval> intervals;
   std::vector<std::uint32_t> named;  // solids the expression names
   std::uint64_t unmatched = 0, unclosed = 0;
   double tie = 0;
 
   ShotWorker(const Accel& accel, const ShotOptions& o)
-      : it(accel, o.kernel, KernelOptions{HitOrder{TieOrder::leave_before_enter}}),
-        builder(accel.scene().geometries().size()),
+      : PartitionWalker(accel, o.kernel),
         tie(tie_distance(accel.scene(), o.tie_tolerance_rel)) {
     if (o.csg) {
       eval.emplace(*o.csg, accel.scene().geometries().size());

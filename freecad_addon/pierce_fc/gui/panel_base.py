@@ -104,6 +104,16 @@ class PanelBase:
         layout.addWidget(box)
         return QtWidgets.QFormLayout(box)
 
+    def results_table(self, layout, columns):
+        """A read-only table with a header of `columns`, added to `layout`; rows are filled by
+        show_result()."""
+        table = QtWidgets.QTableWidget(0, len(columns))
+        table.setHorizontalHeaderLabels(columns)
+        table.setEditTriggers(QtWidgets.QAbstractItemView.NoEditTriggers)
+        table.setMinimumHeight(160)
+        layout.addWidget(table)
+        return table
+
     def solids_to_analyse(self, whole_document=False):
         """The objects a run works on: every visible solid of the active document, or the
         current selection (a group or App::Part selects its contents)."""
@@ -146,6 +156,15 @@ class PanelBase:
 
 def selected_objects():
     return list(Gui.Selection.getSelection())
+
+
+def check_box(text, checked=False, tooltip=None):
+    """A QCheckBox labelled `text`, ticked when `checked`."""
+    w = QtWidgets.QCheckBox(text)
+    w.setChecked(checked)
+    if tooltip:
+        w.setToolTip(tooltip)
+    return w
 
 
 def double_spin(value, minimum, maximum, decimals=4, suffix=" mm", special=None, step=None):

@@ -5,7 +5,7 @@ import FreeCADGui as Gui
 
 from .. import overlap_check
 from ..overlap_check import OverlapOptions
-from .panel_base import PanelBase, double_spin
+from .panel_base import PanelBase, check_box, double_spin
 from .qt import QtWidgets
 
 COLUMNS = ["Finding", "Solid A", "Solid B", "Depth (mm)", "Area (mm²)", "Faces"]
@@ -17,8 +17,9 @@ class OverlapPanel(PanelBase):
 
     def build_options(self, layout):
         f = self.options_form(layout, "Options")
-        self.whole_document = QtWidgets.QCheckBox("All visible solids of the document")
-        self.whole_document.setToolTip("Otherwise the selected solids (a group or App::Part selects its contents)")
+        self.whole_document = check_box(
+            "All visible solids of the document",
+            tooltip="Otherwise the selected solids (a group or App::Part selects its contents)")
         self.tolerance = double_spin(1e-3, 0.0, 1e6, decimals=6, special="exact only", step=1e-3)
         self.tolerance.setToolTip("Faces closer than this to each other's plane count as coplanar")
         self.grid = QtWidgets.QSpinBox()
@@ -26,8 +27,7 @@ class OverlapPanel(PanelBase):
         self.grid.setValue(64)
         self.grid.setToolTip("Interference is looked for along grid x grid rays in each axis direction")
         self.deflection = double_spin(0.0, 0.0, 1e6, special="automatic (0.1% of size)", step=0.01)
-        self.markers = QtWidgets.QCheckBox("Add markers to the document")
-        self.markers.setChecked(True)
+        self.markers = check_box("Add markers to the document", True)
         f.addRow(self.whole_document)
         f.addRow("Coplanar tolerance", self.tolerance)
         f.addRow("Rays per side", self.grid)
@@ -35,15 +35,11 @@ class OverlapPanel(PanelBase):
         f.addRow(self.markers)
 
     def build_results(self, layout):
-        self.table = QtWidgets.QTableWidget(0, len(COLUMNS))
-        self.table.setHorizontalHeaderLabels(COLUMNS)
+        self.table = self.results_table(layout, COLUMNS)
         self.table.setSelectionBehavior(QtWidgets.QAbstractItemView.SelectRows)
         self.table.setSelectionMode(QtWidgets.QAbstractItemView.SingleSelection)
-        self.table.setEditTriggers(QtWidgets.QAbstractItemView.NoEditTriggers)
         self.table.horizontalHeader().setStretchLastSection(True)
-        self.table.setMinimumHeight(160)
         self.table.itemSelectionChanged.connect(self.on_row)
-        layout.addWidget(self.table)
 
     def compute(self, progress, cancel):
         objects = self.solids_to_analyse(self.whole_document.isChecked())

@@ -5,7 +5,7 @@ import FreeCADGui as Gui
 from .. import shotline
 from ..errors import SelectionError
 from ..shotline import ShotOptions
-from .panel_base import PanelBase, double_spin
+from .panel_base import PanelBase, check_box, double_spin
 from .qt import QtWidgets
 
 COLUMNS = ["Ray", "Kind", "Solids", "In", "Out", "LOS (mm)", "Obliquity in", "Obliquity out", "Normal thickness"]
@@ -28,12 +28,10 @@ class ShotlinePanel(PanelBase):
         self.grid = QtWidgets.QSpinBox()
         self.grid.setRange(1, 256)
         self.grid.setValue(8)
-        self.all_visible = QtWidgets.QCheckBox("Through all visible solids of the document")
-        self.all_visible.setChecked(True)
+        self.all_visible = check_box("Through all visible solids of the document", True)
         self.csg = QtWidgets.QLineEdit()
         self.csg.setPlaceholderText("optional, e.g. difference(Plate, Hole)")
-        self.markers = QtWidgets.QCheckBox("Add line segments to the document")
-        self.markers.setChecked(True)
+        self.markers = check_box("Add line segments to the document", True)
         f.addRow(self.mode_point)
         f.addRow("Point x, y, z", _row(self.origin))
         f.addRow("Direction", _row(self.direction))
@@ -45,11 +43,7 @@ class ShotlinePanel(PanelBase):
         f.addRow(self.markers)
 
     def build_results(self, layout):
-        self.table = QtWidgets.QTableWidget(0, len(COLUMNS))
-        self.table.setHorizontalHeaderLabels(COLUMNS)
-        self.table.setEditTriggers(QtWidgets.QAbstractItemView.NoEditTriggers)
-        self.table.setMinimumHeight(160)
-        layout.addWidget(self.table)
+        self.table = self.results_table(layout, COLUMNS)
 
     def on_pick(self):
         for sel in Gui.Selection.getSelectionEx():

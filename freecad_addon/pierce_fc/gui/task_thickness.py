@@ -7,7 +7,7 @@ from .. import thickness_map
 from ..locate import PierceUnavailable
 from ..thickness_map import ThicknessOptions
 from .legend import Legend
-from .panel_base import PanelBase, double_spin
+from .panel_base import PanelBase, check_box, double_spin
 from .qt import QtWidgets
 
 
@@ -31,22 +31,19 @@ class ThicknessPanel(PanelBase):
                             "but vertices on sharp edges use an averaged normal")
         self.deflection = double_spin(0.0, 0.0, 1e6, special="automatic (0.1% of size)", step=0.01)
         self.angular = double_spin(15.0, 1.0, 90.0, decimals=1, suffix=" deg")
-        self.split = QtWidgets.QCheckBox("Split triangle edges longer than")
-        self.split.setChecked(True)
-        self.split.setToolTip("More samples on large flat faces (whose CAD triangles are few and big)")
+        self.split = check_box("Split triangle edges longer than", True,
+                               tooltip="More samples on large flat faces (whose CAD triangles are few and big)")
         self.max_edge = double_spin(0.0, 0.0, 1e6, special="automatic (4% of size)", step=0.1)
         self.split.toggled.connect(self.max_edge.setEnabled)
         self.threshold = double_spin(0.0, 0.0, 1e6, special="off", step=0.1)
         self.threshold.setToolTip("Samples thinner than this are coloured magenta")
-        self.auto_range = QtWidgets.QCheckBox("from the results")
-        self.auto_range.setChecked(True)
+        self.auto_range = check_box("from the results", True)
         self.range_min = double_spin(0.0, -1e9, 1e9)
         self.range_max = double_spin(10.0, -1e9, 1e9)
         self.range_min.setEnabled(False)
         self.range_max.setEnabled(False)
         self.auto_range.toggled.connect(lambda on: (self.range_min.setEnabled(not on), self.range_max.setEnabled(not on)))
-        self.hide_sources = QtWidgets.QCheckBox("Hide the analysed solids")
-        self.hide_sources.setChecked(True)
+        self.hide_sources = check_box("Hide the analysed solids", True)
         f.addRow("Method", self.method)
         f.addRow("Samples", self.per)
         f.addRow("Deflection", self.deflection)
