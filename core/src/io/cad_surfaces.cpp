@@ -16,6 +16,8 @@
 #include <mutex>
 #include <stdexcept>
 
+#include <tbb/enumerable_thread_specific.h>
+
 #include "cad_faces.h"
 
 namespace pierce {
@@ -47,8 +49,38 @@ struct CadSurfaces::Intersectors {
   std::map<std::uint32_t, std::unique_ptr<IntCurvesFace_ShapeIntersector>> of_geom;
 };
 
+// BRepTopAdaptor_FClass2d::Perform is const but not safe to call from two threads at once (it
+// crashed so under TBB), so every thread builds its own classifier of a face on first use.
 struct CadSurfaces::Classifiers {
-  std::vector<std::vector<std::unique_ptr<BRepTopAdaptor_FClass2d>>> of_geom;  // [geom][face]
+  struct Slot {
+    bool built = false;
+    std::unique_ptr<BRepTopAdaptor_FClass2d> classifier;  // null if OpenCASCADE could not build it
+  };
+  using PerThread = std::vector<std::vector<Slot>>;  // [geom][face]
+  tbb::enumerable_thread_specific<PerThread> per_thread;
+
+  // This thread's classifier of `face`; null where the face is unclassifiable (refined points on
+  // it are then not checked against its trim).
+  const BRepTopAdaptor_FClass2d* of(const std::vector<CadLink>& links, std::uint32_t geom, std::uint32_t face) {
+    PerThread& mine = per_thread.local();
+    if (mine.empty()) {
+      mine.resize(links.size());
+      for (std::size_t g = 0; g < links.size(); ++g)
+        if (!links[g].empty()) mine[g].resize(links[g].faces->faces.size());
+    }
+    Slot& slot = mine.at(geom).at(face);
+    if (!slot.built) {
+      slot.built = true;
+      const CadFaces::Face& f = links[geom].faces->faces[face];
+      try {
+        const double span = std::max(f.umax - f.umin, f.vmax - f.vmin);
+        slot.classifier = std::make_unique<BRepTopAdaptor_FClass2d>(f.face, 1e-9 * std::max(span, 1e-300));
+      } catch (const Standard_Failure&) {
+        slot.classifier.reset();
+      }
+    }
+    return slot.classifier.get();
+  }
 };
 
 CadSurfaces::~CadSurfaces() = default;
@@ -79,20 +111,6 @@ CadSurfaces::CadSurfaces(std::vector<CadLink> links)
     : links_(std::move(links)),
       intersectors_(std::make_unique<Intersectors>()),
       classifiers_(std::make_unique<Classifiers>()) {
-  classifiers_->of_geom.resize(links_.size());
-  for (std::size_t g = 0; g < links_.size(); ++g) {
-    if (links_[g].empty()) continue;
-    for (const CadFaces::Face& f : links_[g].faces->faces) {
-      std::unique_ptr<BRepTopAdaptor_FClass2d> c;
-      try {
-        const double span = std::max(f.umax - f.umin, f.vmax - f.vmin);
-        c = std::make_unique<BRepTopAdaptor_FClass2d>(f.face, 1e-9 * std::max(span, 1e-300));
-      } catch (const Standard_Failure&) {
-        c.reset();  // unclassifiable: refined points on it are not checked against its trim
-      }
-      classifiers_->of_geom[g].push_back(std::move(c));
-    }
-  }
   folded_.resize(links_.size());
   for (std::size_t g = 0; g < links_.size(); ++g) {
     const CadLink& l = links_[g];
@@ -236,7 +254,7 @@ std::optional<analysis::SurfaceCrossing> CadSurfaces::intersect(std::uint32_t ge
   };
   // Inside the face's trim: a crossing of the untrimmed surface beyond the face's boundary is
   // not where the ray leaves (it left through a neighbour first).
-  const BRepTopAdaptor_FClass2d* trim = classifiers_->of_geom.at(geom).at(links_[geom].face.at(prim)).get();
+  const BRepTopAdaptor_FClass2d* trim = classifiers_->of(links_, geom, links_[geom].face.at(prim));
   auto in_face = [&](double uu, double vv) {
     return !trim || trim->Perform(gp_Pnt2d(uu, vv)) != TopAbs_OUT;
   };
