@@ -217,11 +217,57 @@ TEST(CadExact, NoExitOnTheMeshFallsBackToTheBrep) {
   ThicknessOptions mesh_only;
   mesh_only.per = SampleAt::face;
   EXPECT_GT(compute_thickness(accel, mesh_only).solids[0].no_exit, 0u);
-  // first_crossing itself: from outside the box along +x, the first crossing is its face x = 0.
-  const auto t = unflagged.first_crossing(0, {-2, 4, 3}, {1, 0, 0}, 0.0);
-  ASSERT_TRUE(t.has_value());
-  EXPECT_NEAR(*t, 2.0, 1e-9);
-  EXPECT_FALSE(unflagged.first_crossing(0, {-2, 4, 3}, {-1, 0, 0}, 0.0).has_value());
+  // exact_exit itself: from inside the box along +x it leaves through x = 10; from outside, it
+  // passes in through x = 0 and leaves through x = 10; away from the box it never leaves.
+  const auto inside = unflagged.exact_exit(0, {5, 4, 3}, {1, 0, 0}, 0.0);
+  ASSERT_TRUE(inside.has_value());
+  EXPECT_NEAR(*inside, 5.0, 1e-9);
+  const auto through = unflagged.exact_exit(0, {-2, 4, 3}, {1, 0, 0}, 0.0);
+  ASSERT_TRUE(through.has_value());
+  EXPECT_NEAR(*through, 12.0, 1e-9);
+  EXPECT_FALSE(unflagged.exact_exit(0, {-2, 4, 3}, {-1, 0, 0}, 0.0).has_value());
+}
+
+// KiCad packages carry their lettering embossed a few microns high. A vertex on a letter's rim
+// is sampled per face; the top face's ray runs down the letter's wall (on the boundary, then
+// inside the body) and leaves at the bottom: the mesh meets the wall's chords at once, and
+// OpenCASCADE reports a crossing at every edge the ray passes. Neither may read as a wall of
+// microns (they did, on 0603, 0805 and 1206 packages).
+TEST(CadExact, EmbossedMarkingRimsReadTheWallBelow) {
+  const TopoDS_Shape shape = test_models::embossed_box();
+  const auto l = load(shape, "embossed");
+  ASSERT_TRUE(l->exact);
+  const double top = 6 + test_models::kEmbossHeight;
+  // Down the dot's wall from its rim, and down the bar's wall from its edge and its corner.
+  for (const Vec3d rim : {Vec3d{4, 4, top}, Vec3d{3, 5, top}, Vec3d{7, 3.5, top}, Vec3d{6, 3.5, top}}) {
+    const auto t = l->exact->exact_exit(0, rim, {0, 0, -1}, 1e-6);
+    ASSERT_TRUE(t.has_value()) << "from (" << rim.x << ", " << rim.y << ")";
+    EXPECT_NEAR(*t, top, 1e-9) << "from (" << rim.x << ", " << rim.y << ")";
+  }
+  const double size = diagonal(shape);
+  for (const SampleAt per : {SampleAt::vertex, SampleAt::face}) {
+    ThicknessOptions o;
+    o.per = per;
+    o.exact = l->exact.get();
+    const ThicknessResult r = compute_thickness(Accel(l->scene), o);
+    ASSERT_TRUE(r.completed);
+    // Every valid sample's wall, known in closed form: straight down, the height of its point;
+    // sideways, through the body or through the marking (at least the bar's width, 1).
+    std::size_t down = 0;
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      ASSERT_EQ(r.status[i], ThicknessStatus::ok) << "sample " << i;
+      if (r.normal[i].z > 1 - 1e-9) {
+        ++down;
+        EXPECT_NEAR(r.thickness[i], r.point[i].z, 1e-6 * size)
+            << "per " << enum_name(per) << " sample " << i << " at (" << r.point[i].x << ", " << r.point[i].y
+            << ", " << r.point[i].z << ")";
+      } else {
+        EXPECT_GE(r.thickness[i], 1.0 - 1e-6 * size) << "per " << enum_name(per) << " sample " << i;
+      }
+    }
+    EXPECT_GT(down, 0u);
+    EXPECT_GE(r.solids[0].summary.min, 1.0 - 1e-6 * size) << "per " << enum_name(per);
+  }
 }
 
 // On the B-rep, the sheet's wall is exactly 0.5 across its flat legs and the bend: face samples

@@ -1,6 +1,7 @@
 #include "step_assembly.h"
 
 #include <BRepAlgoAPI_Cut.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
@@ -124,6 +125,18 @@ TopoDS_Shape thin_blended_plate() {
   BRepAlgoAPI_Cut cut(plate, hole);
   if (!cut.IsDone()) throw std::runtime_error("thin_blended_plate: hole failed");
   return cut.Shape();
+}
+
+TopoDS_Shape embossed_box() {
+  const TopoDS_Shape body = BRepPrimAPI_MakeBox(10, 8, 6).Shape();
+  const TopoDS_Shape dot =
+      BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(3, 4, 6), gp_Dir(0, 0, 1)), 1.0, kEmbossHeight).Shape();
+  const TopoDS_Shape bar = BRepPrimAPI_MakeBox(gp_Pnt(6, 3.5, 6), 2, 1, kEmbossHeight).Shape();
+  BRepAlgoAPI_Fuse with_dot(body, dot);
+  if (!with_dot.IsDone()) throw std::runtime_error("embossed_box: fuse failed");
+  BRepAlgoAPI_Fuse with_bar(with_dot.Shape(), bar);
+  if (!with_bar.IsDone()) throw std::runtime_error("embossed_box: fuse failed");
+  return with_bar.Shape();
 }
 
 TopoDS_Shape lofted_solid() {

@@ -19,7 +19,11 @@
 //                   tessellation the bare mesh reads false thin spots at the blends (0.07 for
 //                   the 0.3 sheet);
 //   lofted_solid    a solid loft (B-spline side, planar caps) through circles of radius 5 at
-//                   z = 0, 3 at (1, 0, 10) and 4 at (0, 1, 20): acute rims at both caps.
+//                   z = 0, 3 at (1, 0, 10) and 4 at (0, 1, 20): acute rims at both caps;
+//   embossed_box    box [0,10] x [0,8] x [0,6] with a marking embossed kEmbossHeight high on its
+//                   top, as KiCad packages carry their lettering: a dot of radius 1 centred at
+//                   (3, 4) and a bar [6,8] x [3.5,4.5]. Vertex samples on the marking's rims run
+//                   down its walls.
 #include <TopoDS_Shape.hxx>
 
 #include <string>
@@ -34,6 +38,8 @@ TopoDS_Shape filleted_box();
 TopoDS_Shape hollow_torus();
 TopoDS_Shape thin_blended_plate();
 TopoDS_Shape lofted_solid();
+inline constexpr double kEmbossHeight = 0.002;
+TopoDS_Shape embossed_box();
 
 // `shape` meshed with `deflection` and one triangle of its most finely meshed face turned
 // upside down (a fold the loader must find); the triangulation is kept in the shape.

@@ -152,7 +152,7 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
     const bool met_fold = !folded.empty() && rec.first_prim != kInvalidId && folded[rec.first_prim] != 0;
     // Where the mesh gives no answer, the exact B-rep is asked directly (slow, rare).
     auto exact_fallback = [&]() -> Measured {
-      const std::optional<double> t = opts.exact->first_crossing(s.geom, s.point, dir, tie);
+      const std::optional<double> t = opts.exact->exact_exit(s.geom, s.point, dir, tie);
       if (!t) return {kNaN, ThicknessStatus::tessellation};
       if (*t > opts.max_distance) return {kNaN, ThicknessStatus::no_exit};
       return {*t};
@@ -169,11 +169,13 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
     const std::optional<SurfaceCrossing> x = opts.exact->intersect(s.geom, rec.prim, rec.u, rec.v, s.point, dir);
     if (!x) return exact_fallback();
     double t = x->t;
-    // A ray that meets the face at a glancing angle may leave the exact solid before the mesh
-    // says (a graze the chords hide): the B-rep is asked for an earlier crossing.
+    // A ray that meets the face at a glancing angle is where the mesh and the B-rep may disagree:
+    // it may leave the exact solid before the mesh says (a graze the chords hide), or only touch
+    // the face (a vertex sample on a rim, running down the face below it, grazes that face's
+    // chords at once) and leave much later. The B-rep's own first crossing decides.
     if (!(std::abs(dot(x->normal, dir)) >= kGrazingCos)) {
-      const std::optional<double> first = opts.exact->first_crossing(s.geom, s.point, dir, tie);
-      if (first && *first < t) t = *first;
+      const std::optional<double> first = opts.exact->exact_exit(s.geom, s.point, dir, tie);
+      if (first) t = *first;
     }
     if (t > opts.max_distance) return {kNaN, ThicknessStatus::no_exit};
     return {t};

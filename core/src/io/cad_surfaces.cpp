@@ -1,8 +1,12 @@
 #include "pierce/io/cad_surfaces.h"
 
 #include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <BRepBndLib.hxx>
+#include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepTopAdaptor_FClass2d.hxx>
+#include <Bnd_Box.hxx>
 #include <IntCurvesFace_Intersector.hxx>
+#include <IntCurveSurface_TransitionOnCurve.hxx>
 #include <IntCurvesFace_ShapeIntersector.hxx>
 #include <Standard_Failure.hxx>
 #include <gp_Lin.hxx>
@@ -15,6 +19,7 @@
 #include <map>
 #include <mutex>
 #include <stdexcept>
+#include <vector>
 
 #include <tbb/enumerable_thread_specific.h>
 
@@ -45,8 +50,13 @@ struct Start {
 }  // namespace
 
 struct CadSurfaces::Intersectors {
+  struct OfGeom {
+    IntCurvesFace_ShapeIntersector line;
+    BRepClass3d_SolidClassifier inside;
+    double tolerance = 0;
+  };
   std::mutex mutex;
-  std::map<std::uint32_t, std::unique_ptr<IntCurvesFace_ShapeIntersector>> of_geom;
+  std::map<std::uint32_t, std::unique_ptr<OfGeom>> of_geom;
 };
 
 // BRepTopAdaptor_FClass2d::Perform is const but not safe to call from two threads at once (it
@@ -85,23 +95,48 @@ struct CadSurfaces::Classifiers {
 
 CadSurfaces::~CadSurfaces() = default;
 
-std::optional<double> CadSurfaces::first_crossing(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin) const {
+std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin) const {
   const CadLink& l = links_.at(geom);
   if (l.empty() || l.faces->shape.IsNull()) return std::nullopt;
   const std::lock_guard<std::mutex> lock(intersectors_->mutex);
   try {
     auto& x = intersectors_->of_geom[geom];
     if (!x) {
-      x = std::make_unique<IntCurvesFace_ShapeIntersector>();
-      x->Load(l.faces->shape, 1e-9 * std::max(1.0, std::max({std::abs(org.x), std::abs(org.y), std::abs(org.z)})));
+      x = std::make_unique<Intersectors::OfGeom>();
+      Bnd_Box box;
+      BRepBndLib::Add(l.faces->shape, box);
+      x->tolerance = 1e-9 * (box.IsVoid() ? 1.0 : std::max(std::sqrt(box.SquareExtent()), 1e-300));
+      x->line.Load(l.faces->shape, x->tolerance);
+      x->inside.Load(l.faces->shape);
     }
-    x->Perform(gp_Lin(gp_Pnt(org.x, org.y, org.z), gp_Dir(dir.x, dir.y, dir.z)), tmin,
-               std::numeric_limits<double>::infinity());
-    if (!x->IsDone()) return std::nullopt;
-    std::optional<double> best;
-    for (Standard_Integer i = 1; i <= x->NbPnt(); ++i)
-      if (x->WParameter(i) > tmin && (!best || x->WParameter(i) < *best)) best = x->WParameter(i);
-    return best;
+    const gp_Lin line(gp_Pnt(org.x, org.y, org.z), gp_Dir(dir.x, dir.y, dir.z));
+    x->line.Perform(line, tmin, std::numeric_limits<double>::infinity());
+    if (!x->line.IsDone()) return std::nullopt;
+    // Where the line crosses a face (touching one, tangent to it or running in it, is no
+    // crossing), nearest first.
+    struct Crossing {
+      double t;
+      bool clean_exit;  // through a face's interior, leaving the solid
+    };
+    std::vector<Crossing> crossings;
+    for (Standard_Integer i = 1; i <= x->line.NbPnt(); ++i)
+      if (x->line.Transition(i) != IntCurveSurface_Tangent && x->line.WParameter(i) > tmin)
+        crossings.push_back({x->line.WParameter(i), x->line.Transition(i) == IntCurveSurface_Out &&
+                                                          x->line.State(i) == TopAbs_IN});
+    std::sort(crossings.begin(), crossings.end(), [](const Crossing& a, const Crossing& b) { return a.t < b.t; });
+    // The ray leaves at the first crossing beyond which it is outside the solid. A clean exit
+    // through a face is that; a crossing at a face's edge, or where the ray runs along the
+    // boundary (a vertex sample on a rim, down the face below it: OpenCASCADE then reports
+    // crossings of every edge it passes, with any transition), is settled by classifying the
+    // line between it and the next crossing. Beyond the last crossing the line is outside.
+    for (std::size_t i = 0; i < crossings.size(); ++i) {
+      if (crossings[i].clean_exit || i + 1 == crossings.size()) return crossings[i].t;
+      const double mid = 0.5 * (crossings[i].t + crossings[i + 1].t);
+      if (mid - crossings[i].t <= x->tolerance) continue;  // the same crossing, reported twice
+      x->inside.Perform(line.Location().Translated(gp_Vec(line.Direction()) * mid), x->tolerance);
+      if (x->inside.State() == TopAbs_OUT) return crossings[i].t;
+    }
+    return std::nullopt;
   } catch (const Standard_Failure&) {
     return std::nullopt;
   }

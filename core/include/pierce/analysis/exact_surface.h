@@ -43,11 +43,13 @@ class ExactSurfaces {
   // start; nullopt when there is none near it.
   virtual std::optional<SurfaceCrossing> intersect(std::uint32_t geom, std::uint32_t prim, double b1, double b2,
                                                    Vec3d org, Vec3d dir) const = 0;
-  // The fallback when the mesh gives no answer (no exit found, or the refinement failed): the
-  // smallest t > tmin where the line org + t dir (dir unit) crosses the exact boundary of
-  // geometry `geom`, from an exact intersection with every face; nullopt when there is none.
-  // Much slower than intersect(), and serialised: for the rare samples that need it.
-  virtual std::optional<double> first_crossing(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin) const = 0;
+  // The fallback when the mesh gives no answer (no exit found, the refinement failed, a glancing
+  // exit): the smallest t > tmin where the line org + t dir (dir unit) leaves the exact solid of
+  // geometry `geom` for its outside, from an exact intersection with every face; nullopt when
+  // there is none. Touching a face (tangent to it, or running in it) is not leaving: a ray from a
+  // rim down the face below it stays on the boundary, then inside, and leaves where the material
+  // ends. Much slower than intersect(), and serialised: for the rare samples that need it.
+  virtual std::optional<double> exact_exit(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin) const = 0;
 };
 
 }  // namespace pierce::analysis

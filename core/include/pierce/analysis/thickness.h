@@ -26,9 +26,9 @@
 // The exit found on the mesh is refined on the exact face of the triangle it crosses (Newton
 // steps from the triangle's UV); where that gives no answer inside the face's trim, where the
 // ray meets the face at a glancing angle, or where the mesh has no exit in a closed solid, the
-// whole B-rep is intersected (ExactSurfaces::first_crossing). So ray and cone rays measure the
-// B-rep, not the tessellation (the sphere method's ball is still shrunk against the mesh, from
-// the mesh sample along the exact normal). A sample that starts on a folded triangle, first
+// whole B-rep is intersected and decides (ExactSurfaces::exact_exit). So ray and cone rays
+// measure the B-rep, not the tessellation (the sphere method's ball is still shrunk against the
+// mesh, from the mesh sample along the exact normal). A sample that starts on a folded triangle, first
 // meets or leaves through one, or finds no exit in a closed solid (max_distance infinite)
 // where the B-rep has none either, or whose projection fails, gets status `tessellation` and
 // no thickness: it is an artefact of the mesh, counted per solid and left out of the

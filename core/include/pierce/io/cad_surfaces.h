@@ -26,7 +26,7 @@ class CadSurfaces final : public analysis::ExactSurfaces {
                                                 Vec3d p) const override;
   std::optional<analysis::SurfaceCrossing> intersect(std::uint32_t geom, std::uint32_t prim, double b1, double b2,
                                                      Vec3d org, Vec3d dir) const override;
-  std::optional<double> first_crossing(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin) const override;
+  std::optional<double> exact_exit(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin) const override;
   ~CadSurfaces() override;
 
  private:
