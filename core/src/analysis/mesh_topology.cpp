@@ -156,14 +156,18 @@ std::vector<Vec3d> vertex_normals(const Geometry& g, const std::vector<std::uint
       for (int c = 0; c < 3; ++c) acc[weld[t[c]]] = acc[weld[t[c]]] + contrib[i - b0][std::size_t(c)];
     }
   }
-  std::vector<Vec3d> out(g.vertices.size());
+  // In place: every vertex welds to the lowest index at its position, whose sum is final (and
+  // normalised first, since it comes first).
   for (std::size_t v = 0; v < g.vertices.size(); ++v) {
-    const Vec3d a = acc[weld[v]];
-    const double len = length(a);
+    if (weld[v] != v) {
+      acc[v] = acc[weld[v]];
+      continue;
+    }
+    const double len = length(acc[v]);
     // Normals that (nearly) cancel give no usable direction.
-    out[v] = len > 1e-12 ? a * (1.0 / len) : Vec3d{};
+    acc[v] = len > 1e-12 ? acc[v] * (1.0 / len) : Vec3d{};
   }
-  return out;
+  return acc;
 }
 
 }  // namespace pierce::analysis

@@ -13,28 +13,42 @@ namespace pierce::analysis::detail {
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // One point to measure: where, along which inward direction, and which triangles pass
-// through it (skipped by the sphere method's closest-point queries).
+// through it (skipped by the sphere method's closest-point queries). Kept small (28 bytes), as
+// there is one per vertex or triangle: a mesh sample starts at its result row's point along
+// minus its row's normal, and only CAD samples carry their points (SampleSet::cad).
 struct Sample {
   std::uint32_t geom;
   std::uint32_t out_index;  // position in the result arrays
-  Vec3d point, inward;      // CAD: on the exact face, along its exact inward normal
-  std::uint32_t exclude_begin, exclude_end;  // range in SampleSet::exclude
-  std::uint32_t prim = kInvalidId;           // face samples: the triangle the point lies on
-  // CAD input (ThicknessOptions::exact or tessellation_flags covers the geometry):
-  Vec3d mesh_point{};        // the mesh sample `point` was projected from: mesh rays start here
-  bool cad = false;          // tessellation statuses apply
-  bool exact = false;        // exits are refined on the exact faces
-  bool closed = false;       // the geometry's mesh is closed: a ray must find an exit
+  std::uint32_t exclude_begin = 0, exclude_end = 0;  // range in SampleSet::exclude
+  std::uint32_t prim = kInvalidId;  // face samples: the triangle the point lies on
+  std::uint32_t cad = kInvalidId;   // CAD input: its CadSample; kInvalidId for a mesh sample
   ThicknessStatus preset = ThicknessStatus::ok;  // not ok: known without tracing
+
+  bool is_cad() const { return cad != kInvalidId; }  // tessellation statuses apply
+};
+
+// Where a CAD sample starts (ThicknessOptions::exact or tessellation_flags covers the geometry).
+struct CadSample {
+  Vec3d point, inward;  // on the exact face, along its exact inward normal
+  Vec3d mesh_point;     // the mesh sample `point` was projected from: mesh rays start here
+  bool exact = false;   // exits are refined on the exact faces
+  bool closed = false;  // the geometry's mesh is closed: a ray must find an exit
 };
 
 struct SampleSet {
   std::vector<Sample> samples;
+  std::vector<CadSample> cad;
   std::vector<std::uint32_t> exclude;
   // Result slots filled by copying another slot's result (welded duplicates of a vertex).
   std::vector<std::pair<std::uint32_t, std::uint32_t>> copies;  // (to, from)
   std::vector<std::pair<std::size_t, std::size_t>> ranges;      // result range per sampled solid
   std::vector<std::uint32_t> solids;                            // the sampled solids
+
+  void add_cad(Sample s, const CadSample& c) {
+    s.cad = std::uint32_t(cad.size());
+    cad.push_back(c);
+    samples.push_back(s);
+  }
 };
 
 // Validates the options (throws std::invalid_argument).

@@ -90,24 +90,24 @@ std::pair<double, double> corner_bary(int k) { return k == 1 ? std::pair{1.0, 0.
 // A CAD sample at mesh point `m` on triangle `prim`: projected onto the exact face when there
 // are exact surfaces (a failed projection is a tessellation artefact), flagged when it starts on
 // a folded triangle.
-Sample cad_sample(const ThicknessOptions& opts, std::uint32_t g, std::uint32_t out, std::uint32_t prim, double b1,
-                  double b2, Vec3d m, Vec3d mesh_inward, bool start_folded, bool closed) {
-  Sample s{g, out, m, mesh_inward, 0, 0, kInvalidId};
-  s.mesh_point = m;
-  s.cad = true;
-  s.closed = closed;
+std::pair<Sample, CadSample> cad_sample(const ThicknessOptions& opts, std::uint32_t g, std::uint32_t out,
+                                       std::uint32_t prim, double b1, double b2, Vec3d m, Vec3d mesh_inward,
+                                       bool start_folded, bool closed) {
+  Sample s{g, out};
+  CadSample c{m, mesh_inward, m};
+  c.closed = closed;
   if (opts.exact && opts.exact->covers(g)) {
-    s.exact = true;
+    c.exact = true;
     if (const auto p = opts.exact->project(g, prim, b1, b2, m)) {
-      s.point = p->point;
-      s.inward = p->normal * -1.0;
+      c.point = p->point;
+      c.inward = p->normal * -1.0;
       if (p->normal == Vec3d{}) s.preset = ThicknessStatus::no_normal;  // a singular point
     } else {
       s.preset = ThicknessStatus::tessellation;
     }
   }
   if (start_folded) s.preset = ThicknessStatus::tessellation;
-  return s;
+  return {s, c};
 }
 
 }  // namespace
@@ -138,7 +138,7 @@ SampleSet build_samples(const Scene& scene, const ThicknessOptions& opts, Thickn
     const std::vector<std::uint8_t>* mask = masked ? &opts.sample_mask[g] : nullptr;
     auto selected = [&](std::uint32_t e) { return !masked || (!mask->empty() && (*mask)[e] != 0); };
     if (opts.per == SampleAt::vertex) {
-      const auto normals = vertex_normals(geo, weld);
+      auto normals = vertex_normals(geo, weld);
       // With a mask, a group of coincident vertices is measured (at its first vertex) when any
       // of its vertices is selected.
       std::vector<std::uint8_t> group_wanted;
@@ -159,12 +159,20 @@ SampleSet build_samples(const Scene& scene, const ThicknessOptions& opts, Thickn
             if (list.empty() || list.back() != t) list.push_back(t);
           }
       }
+      auto wanted = [&](std::uint32_t v) { return !masked || selected(v) || (weld[v] == v && group_wanted[v]); };
+      // The rows first: they hold the normals, which are then freed before the samples are made
+      // (one vertex-sized array less at the peak; a vertex's normal is its row's).
       for (std::uint32_t v = 0; v < geo.vertices.size(); ++v) {
-        if (masked && !selected(v) && !(weld[v] == v && group_wanted[v])) continue;
+        if (!wanted(v)) continue;
         push_row(res, g, v, geo.vertices[v], normals[v]);
-        const std::uint32_t out = std::uint32_t(res.size() - 1);
-        if (masked) out_of[v] = out;
-        if (weld[v] != v && (normals[v] != Vec3d{} || cad)) {
+        if (masked) out_of[v] = std::uint32_t(res.size() - 1);
+      }
+      std::vector<Vec3d>().swap(normals);
+      for (std::uint32_t v = 0; v < geo.vertices.size(); ++v) {
+        if (!wanted(v)) continue;
+        const std::uint32_t out = masked ? out_of[v] : std::uint32_t(base + v);
+        const Vec3d normal = res.normal[out];
+        if (weld[v] != v && (normal != Vec3d{} || cad)) {
           set.copies.emplace_back(out, masked ? out_of[weld[v]] : std::uint32_t(base + weld[v]));
           continue;
         }
@@ -186,20 +194,20 @@ SampleSet build_samples(const Scene& scene, const ThicknessOptions& opts, Thickn
             continue;
           }
           res.status[out] = ThicknessStatus::ok;
-          auto add = [&](Sample smp) {
-            smp.exclude_begin = std::uint32_t(set.exclude.size());
+          auto add = [&](std::pair<Sample, CadSample> smp) {
+            smp.first.exclude_begin = std::uint32_t(set.exclude.size());
             if (opts.method == ThicknessMethod::sphere)
               set.exclude.insert(set.exclude.end(), around[v].begin(), around[v].end());
-            smp.exclude_end = std::uint32_t(set.exclude.size());
-            set.samples.push_back(smp);
+            smp.first.exclude_end = std::uint32_t(set.exclude.size());
+            set.add_cad(smp.first, smp.second);
           };
           const bool exact = opts.exact && opts.exact->covers(g);
           bool any_folded = false;
           for (const auto& [f, fo] : face_folded) any_folded = any_folded || fo;
           if (!exact) {  // flags only: the mesh normal, once
-            Sample smp = cad_sample(opts, g, out, per_face.begin()->second.first, 0, 0, geo.vertices[v],
-                                    normals[v] * -1.0, any_folded, closed);
-            if (normals[v] == Vec3d{}) smp.preset = ThicknessStatus::no_normal;
+            auto smp = cad_sample(opts, g, out, per_face.begin()->second.first, 0, 0, geo.vertices[v],
+                                  normal * -1.0, any_folded, closed);
+            if (normal == Vec3d{}) smp.first.preset = ThicknessStatus::no_normal;
             add(smp);
             continue;
           }
@@ -245,36 +253,31 @@ SampleSet build_samples(const Scene& scene, const ThicknessOptions& opts, Thickn
               b1 += kEdgeInset * (1.0 / 3.0 - b1), b2 += kEdgeInset * (1.0 / 3.0 - b2);
               m = m + (c - m) * kEdgeInset;
             }
-            add(cad_sample(opts, g, out, af.tri, b1, b2, m, normals[v] * -1.0, face_folded[af.face], closed));
+            add(cad_sample(opts, g, out, af.tri, b1, b2, m, normal * -1.0, face_folded[af.face], closed));
             ++taken;
           }
           if (taken > 0) continue;
           if (projected == 0) {  // no face could place the vertex: an artefact of the mesh
-            Sample smp{g, out, geo.vertices[v], normals[v] * -1.0, 0, 0, kInvalidId};
-            smp.mesh_point = geo.vertices[v];
-            smp.cad = smp.exact = true;
-            smp.closed = closed;
+            Sample smp{g, out};
             smp.preset = ThicknessStatus::tessellation;
-            add(smp);
+            add({smp, CadSample{geo.vertices[v], normal * -1.0, geo.vertices[v], true, closed}});
             continue;
           }
           // Every face's ray would leave at once (an acute edge or corner): one sample from the
           // vertex along the mean of the faces' exact normals, as a mesh vertex is sampled.
           const double ml = length(mean);
-          Sample smp{g, out, geo.vertices[v], normals[v] * -1.0, 0, 0, kInvalidId};
-          smp.mesh_point = geo.vertices[v];
-          smp.cad = smp.exact = true;
-          smp.closed = closed;
+          Sample smp{g, out};
+          CadSample at{geo.vertices[v], normal * -1.0, geo.vertices[v], true, closed};
           for (const AtFace& af : faces)
-            if (af.at) smp.point = af.at->point;  // the vertex on the B-rep
-          if (ml > 0) smp.inward = mean * (-1.0 / ml);
+            if (af.at) at.point = af.at->point;  // the vertex on the B-rep
+          if (ml > 0) at.inward = mean * (-1.0 / ml);
           smp.preset = any_folded ? ThicknessStatus::tessellation
                                   : (ml > 0 ? ThicknessStatus::ok : ThicknessStatus::no_normal);
-          add(smp);
+          add({smp, at});
           continue;
         }
-        if (normals[v] == Vec3d{}) continue;
-        Sample s{g, out, geo.vertices[v], normals[v] * -1.0, std::uint32_t(set.exclude.size()), 0};
+        if (normal == Vec3d{}) continue;
+        Sample s{g, out, std::uint32_t(set.exclude.size())};
         if (!around.empty()) set.exclude.insert(set.exclude.end(), around[v].begin(), around[v].end());
         s.exclude_end = std::uint32_t(set.exclude.size());
         set.samples.push_back(s);
@@ -293,13 +296,13 @@ SampleSet build_samples(const Scene& scene, const ThicknessOptions& opts, Thickn
         const std::uint32_t ex = std::uint32_t(set.exclude.size());
         set.exclude.push_back(t);
         if (cad) {
-          Sample s = cad_sample(opts, g, std::uint32_t(res.size() - 1), t, 1.0 / 3.0, 1.0 / 3.0, c, n * -1.0,
-                                !folded.empty() && folded[t] != 0, closed);
+          auto [s, at] = cad_sample(opts, g, std::uint32_t(res.size() - 1), t, 1.0 / 3.0, 1.0 / 3.0, c, n * -1.0,
+                                    !folded.empty() && folded[t] != 0, closed);
           s.exclude_begin = ex, s.exclude_end = ex + 1;
-          set.samples.push_back(s);
+          set.add_cad(s, at);
           continue;
         }
-        set.samples.push_back({g, std::uint32_t(res.size() - 1), c, n * -1.0, ex, ex + 1, t});
+        set.samples.push_back({g, std::uint32_t(res.size() - 1), ex, ex + 1, t});
       }
     }
     set.ranges.emplace_back(base, res.size());
@@ -347,6 +350,7 @@ SampleSet build_point_samples(const Scene& scene, const ThicknessOptions& opts, 
   for (std::uint32_t g : set.solids) any_exact = any_exact || (opts.exact && opts.exact->covers(g));
   if (any_exact) res.brep_faces.assign(n, 0);
   std::vector<Sample> samples(n);
+  std::vector<CadSample> cads(n);  // of the CAD points
   std::vector<std::uint8_t> has_sample(n, 0);
   tbb::enumerable_thread_specific<std::vector<std::uint32_t>> stacks;
   parallel_for_items(n, 64, stacks, {}, [&](std::vector<std::uint32_t>& stack, std::size_t i) {
@@ -373,13 +377,16 @@ SampleSet build_point_samples(const Scene& scene, const ThicknessOptions& opts, 
     const double d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2), det = d11 * d22 - d12 * d12;
     double b1 = 1.0 / 3.0, b2 = 1.0 / 3.0;
     if (det > 0) b1 = (d22 * dot(d, e1) - d12 * dot(d, e2)) / det, b2 = (d11 * dot(d, e2) - d12 * dot(d, e1)) / det;
-    Sample s{g, std::uint32_t(i), cp.point, mesh_n * -1.0, 0, 0, kInvalidId};
+    Sample s{g, std::uint32_t(i)};
     if (is_cad(opts, g)) {
       const std::span<const std::uint8_t> folded = folded_flags(opts, g);
-      s = cad_sample(opts, g, std::uint32_t(i), t, b1, b2, cp.point, mesh_n * -1.0, !folded.empty() && folded[t] != 0,
-                     closed[g] != 0);
-      if (given != Vec3d{}) s.inward = given * -1.0;
-      if (s.preset == ThicknessStatus::ok && s.inward == Vec3d{}) s.preset = ThicknessStatus::no_normal;
+      auto [cs, at] = cad_sample(opts, g, std::uint32_t(i), t, b1, b2, cp.point, mesh_n * -1.0,
+                                 !folded.empty() && folded[t] != 0, closed[g] != 0);
+      if (given != Vec3d{}) at.inward = given * -1.0;
+      if (cs.preset == ThicknessStatus::ok && at.inward == Vec3d{}) cs.preset = ThicknessStatus::no_normal;
+      s = cs;
+      s.cad = 0;  // placed below, in input order
+      cads[i] = at;
     }
     samples[i] = s;
     has_sample[i] = 1;
@@ -390,7 +397,11 @@ SampleSet build_point_samples(const Scene& scene, const ThicknessOptions& opts, 
     s.exclude_begin = std::uint32_t(set.exclude.size());
     set.exclude.push_back(res.element[i]);
     s.exclude_end = s.exclude_begin + 1;
-    set.samples.push_back(s);
+    if (s.is_cad()) {
+      set.add_cad(s, cads[i]);
+    } else {
+      set.samples.push_back(s);
+    }
   }
   return set;
 }

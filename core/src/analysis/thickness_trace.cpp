@@ -125,8 +125,20 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
   const double tie = tie_distance(scene, opts.tie_tolerance_rel);
   std::optional<OriginOffsets> offsets;
   if (uses_origin_offsets(opts)) offsets = build_origin_offsets(scene, accel.bvh(), opts.offset_set);
-  auto offset_of = [&](const Sample& s, Vec3d dir) {
-    return offsets && s.prim != kInvalidId ? safe_offset(*offsets, s.geom, s.prim, s.point, dir) : 0.0;
+  // Where a sample starts and along which inward direction (a mesh sample: its result row).
+  struct Start {
+    Vec3d point, inward;
+    const CadSample* cad;  // null for a mesh sample
+  };
+  auto start_of = [&](const Sample& s) -> Start {
+    if (s.is_cad()) {
+      const CadSample& c = set.cad[s.cad];
+      return {c.point, c.inward, &c};
+    }
+    return {res.point[s.out_index], res.normal[s.out_index] * -1.0, nullptr};
+  };
+  auto offset_of = [&](const Sample& s, Vec3d point, Vec3d dir) {
+    return offsets && s.prim != kInvalidId ? safe_offset(*offsets, s.geom, s.prim, point, dir) : 0.0;
   };
   const std::vector<ConeDir> cone =
       opts.method == ThicknessMethod::cone ? cone_directions(opts.cone_rays, opts.cone_angle_deg)
@@ -144,29 +156,31 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
 
   // One ray of a sample: meshes as ray_exit_distance; CAD samples traced on the mesh from the
   // mesh point, then the exit refined on the exact face of the triangle crossed.
-  auto one_ray = [&](Worker& w, const Sample& s, Vec3d dir) -> Measured {
-    if (!s.cad) return {ray_exit_distance(w.it, s.geom, s.point, dir, opts.max_distance, tie, offset_of(s, dir))};
+  auto one_ray = [&](Worker& w, const Sample& s, const Start& at, Vec3d dir) -> Measured {
+    if (!at.cad)
+      return {ray_exit_distance(w.it, s.geom, at.point, dir, opts.max_distance, tie, offset_of(s, at.point, dir))};
+    const CadSample& c = *at.cad;
     ExitRecord rec;
-    const double tm = exit_impl<true>(w.it, s.geom, s.mesh_point, dir, opts.max_distance, tie, 0, &rec);
+    const double tm = exit_impl<true>(w.it, s.geom, c.mesh_point, dir, opts.max_distance, tie, 0, &rec);
     const std::span<const std::uint8_t> folded = folded_flags(opts, s.geom);
     const bool met_fold = !folded.empty() && rec.first_prim != kInvalidId && folded[rec.first_prim] != 0;
     // Where the mesh gives no answer, the exact B-rep is asked directly (slow, rare).
     auto exact_fallback = [&]() -> Measured {
-      const std::optional<double> t = opts.exact->exact_exit(s.geom, s.point, dir, tie);
+      const std::optional<double> t = opts.exact->exact_exit(s.geom, c.point, dir, tie);
       if (!t) return {kNaN, ThicknessStatus::tessellation};
       if (*t > opts.max_distance) return {kNaN, ThicknessStatus::no_exit};
       return {*t};
     };
     if (std::isnan(tm)) {
       // In a closed solid every ray finds an exit: one that does not slipped through the mesh.
-      const bool artefact = s.closed && std::isinf(opts.max_distance);
+      const bool artefact = c.closed && std::isinf(opts.max_distance);
       if (!artefact) return {kNaN, ThicknessStatus::no_exit};
-      if (s.exact && !met_fold) return exact_fallback();
+      if (c.exact && !met_fold) return exact_fallback();
       return {kNaN, ThicknessStatus::tessellation};
     }
     if (met_fold || (!folded.empty() && folded[rec.prim] != 0)) return {kNaN, ThicknessStatus::tessellation};
-    if (!s.exact) return {tm};
-    const std::optional<SurfaceCrossing> x = opts.exact->intersect(s.geom, rec.prim, rec.u, rec.v, s.point, dir);
+    if (!c.exact) return {tm};
+    const std::optional<SurfaceCrossing> x = opts.exact->intersect(s.geom, rec.prim, rec.u, rec.v, c.point, dir);
     if (!x) return exact_fallback();
     double t = x->t;
     // A ray that meets the face at a glancing angle is where the mesh and the B-rep may disagree:
@@ -174,7 +188,7 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
     // the face (a vertex sample on a rim, running down the face below it, grazes that face's
     // chords at once) and leave much later. The B-rep's own first crossing decides.
     if (!(std::abs(dot(x->normal, dir)) >= kGrazingCos)) {
-      const std::optional<double> first = opts.exact->exact_exit(s.geom, s.point, dir, tie);
+      const std::optional<double> first = opts.exact->exact_exit(s.geom, c.point, dir, tie);
       if (first) t = *first;
     }
     if (t > opts.max_distance) return {kNaN, ThicknessStatus::no_exit};
@@ -183,18 +197,19 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
 
   auto measure = [&](Worker& w, const Sample& s) -> Measured {
     if (s.preset != ThicknessStatus::ok) return {kNaN, s.preset};
-    const Measured ray = one_ray(w, s, s.inward);
+    const Start at = start_of(s);
+    const Measured ray = one_ray(w, s, at, at.inward);
     switch (opts.method) {
       case ThicknessMethod::ray: return ray;
       case ThicknessMethod::cone: {
         if (ray.status == ThicknessStatus::tessellation) return ray;
         Vec3d u, v;
-        basis(s.inward, u, v);
+        basis(at.inward, u, v);
         w.lens.clear();
         std::size_t escaped = 0, counted = 0;
         for (std::size_t i = 0; i < cone.size(); ++i) {
-          const Vec3d d = u * cone[i].local.x + v * cone[i].local.y + s.inward * cone[i].local.z;
-          const Measured m = i == 0 ? ray : one_ray(w, s, d);
+          const Vec3d d = u * cone[i].local.x + v * cone[i].local.y + at.inward * cone[i].local.z;
+          const Measured m = i == 0 ? ray : one_ray(w, s, at, d);
           if (m.status == ThicknessStatus::tessellation) continue;  // CAD: an artefact, left out
           ++counted;
           if (std::isnan(m.t)) ++escaped;
@@ -214,14 +229,14 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
         // none is left. It starts at half the ray thickness, which bounds it. CAD samples: the
         // ball lives on the mesh, so it touches the mesh sample (along the exact normal); the
         // refined ray from the B-rep point, plus the distance between the two, bounds it.
-        const Vec3d at = s.cad ? s.mesh_point : s.point;
-        double r = 0.5 * (s.cad ? ray.t + length(s.mesh_point - s.point) : ray.t);
+        const Vec3d from = at.cad ? at.cad->mesh_point : at.point;
+        double r = 0.5 * (at.cad ? ray.t + length(at.cad->mesh_point - at.point) : ray.t);
         for (int iter = 0; iter < opts.sphere_max_iterations && r > tie; ++iter) {
-          const Vec3d c = at + s.inward * r;
+          const Vec3d c = from + at.inward * r;
           const ClosestPoint cp = closest_point(bvh, c, r * r, exclude, w.stack);
           if (!cp.found() || cp.dist2 >= r * r * (1.0 - 1e-12)) break;
-          const Vec3d d = cp.point - at;
-          const double denom = 2.0 * dot(s.inward, d);
+          const Vec3d d = cp.point - from;
+          const double denom = 2.0 * dot(at.inward, d);
           if (!(denom > 0)) break;
           const double rn = dot(d, d) / denom;
           if (!(rn < r)) break;
@@ -233,27 +248,31 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
     return {kNaN, ThicknessStatus::no_exit};
   };
 
-  std::vector<Measured> measured(set.samples.size());
+  // Mesh samples write their own result slot (one each); CAD samples are gathered, as a slot may
+  // have several (a vertex on an edge has one per face).
+  std::vector<Measured> measured(set.cad.size());
   const bool completed = parallel_for_items(set.samples.size(), 64, workers, progress, [&](Worker& w, std::size_t i) {
-    measured[i] = measure(w, set.samples[i]);
+    const Sample& s = set.samples[i];
+    const Measured m = measure(w, s);
+    if (s.is_cad()) {
+      measured[s.cad] = m;
+    } else {
+      res.thickness[s.out_index] = m.t;
+      res.status[s.out_index] = std::isnan(m.t) ? ThicknessStatus::no_exit : ThicknessStatus::ok;
+    }
   });
   if (!completed) return false;
 
-  // Mesh samples: one per slot. CAD slots keep their smallest valid sample (a vertex on an
-  // edge has one per face), with its point and normal; without a valid one, `tessellation`
-  // wins over no_exit and no_normal.
-  std::vector<std::uint8_t> seen(res.size(), 0);
-  for (std::size_t i = 0; i < set.samples.size(); ++i) {
-    const Sample& s = set.samples[i];
-    const Measured& m = measured[i];
+  // CAD slots keep their smallest valid sample, with its point and normal; without a valid one,
+  // `tessellation` wins over no_exit and no_normal.
+  std::vector<std::uint8_t> seen(set.cad.empty() ? 0 : res.size(), 0);
+  for (const Sample& s : set.samples) {
+    if (!s.is_cad()) continue;
+    const CadSample& c = set.cad[s.cad];
+    const Measured& m = measured[s.cad];
     const std::uint32_t k = s.out_index;
-    if (!s.cad) {
-      res.thickness[k] = m.t;
-      res.status[k] = std::isnan(m.t) ? ThicknessStatus::no_exit : ThicknessStatus::ok;
-      continue;
-    }
     const ThicknessStatus st = std::isnan(m.t) && m.status == ThicknessStatus::ok ? ThicknessStatus::no_exit : m.status;
-    if (!res.brep_faces.empty() && s.exact) res.brep_faces[k] = std::uint8_t(std::min(255, res.brep_faces[k] + 1));
+    if (!res.brep_faces.empty() && c.exact) res.brep_faces[k] = std::uint8_t(std::min(255, res.brep_faces[k] + 1));
     auto rank = [](ThicknessStatus x) {
       return x == ThicknessStatus::ok ? 0 : x == ThicknessStatus::tessellation ? 1 : x == ThicknessStatus::no_exit ? 2 : 3;
     };
@@ -263,9 +282,9 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
     if (!better) continue;
     res.thickness[k] = st == ThicknessStatus::ok ? m.t : kNaN;
     res.status[k] = st;
-    if (s.exact && s.preset != ThicknessStatus::tessellation) {
-      res.point[k] = s.point;
-      res.normal[k] = s.inward * -1.0;
+    if (c.exact && s.preset != ThicknessStatus::tessellation) {
+      res.point[k] = c.point;
+      res.normal[k] = c.inward * -1.0;
     }
   }
   return true;
