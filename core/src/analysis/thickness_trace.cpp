@@ -186,8 +186,9 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
     // A ray that meets the face at a glancing angle is where the mesh and the B-rep may disagree:
     // it may leave the exact solid before the mesh says (a graze the chords hide), or only touch
     // the face (a vertex sample on a rim, running down the face below it, grazes that face's
-    // chords at once) and leave much later. The B-rep's own first crossing decides.
-    if (!(std::abs(dot(x->normal, dir)) >= kGrazingCos)) {
+    // chords at once) and leave much later. So may one that meets the face on its boundary (an
+    // edge, where it may run on into a neighbouring face's plane). The whole B-rep decides.
+    if (x->on_boundary || !(std::abs(dot(x->normal, dir)) >= kGrazingCos)) {
       const std::optional<double> first = opts.exact->exact_exit(s.geom, c.point, dir, tie);
       if (first) t = *first;
     }

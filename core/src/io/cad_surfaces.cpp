@@ -290,13 +290,12 @@ std::optional<analysis::SurfaceCrossing> CadSurfaces::intersect(std::uint32_t ge
   // Inside the face's trim: a crossing of the untrimmed surface beyond the face's boundary is
   // not where the ray leaves (it left through a neighbour first).
   const BRepTopAdaptor_FClass2d* trim = classifiers_->of(links_, geom, links_[geom].face.at(prim));
-  auto in_face = [&](double uu, double vv) {
-    return !trim || trim->Perform(gp_Pnt2d(uu, vv)) != TopAbs_OUT;
-  };
+  auto trim_state = [&](double uu, double vv) { return trim ? trim->Perform(gp_Pnt2d(uu, vv)) : TopAbs_IN; };
   if (converged && t > 0 && in_range(*s.face, u, v, 1e-3) &&
       surf.Value(u, v).Distance(p0) <= 2 * s.size + 1e-9 * scale) {
-    if (!in_face(u, v)) return std::nullopt;  // the caller asks the whole B-rep
-    return analysis::SurfaceCrossing{t, normal_at(u, v)};
+    const TopAbs_State state = trim_state(u, v);
+    if (state == TopAbs_OUT) return std::nullopt;  // the caller asks the whole B-rep
+    return analysis::SurfaceCrossing{t, normal_at(u, v), state == TopAbs_ON};
   }
   // Newton failed (near a pole, a grazing ray): OpenCASCADE's exact intersection of the line with
   // the face, the crossing nearest to the start. Rare, so the intersector is built here.
@@ -309,7 +308,7 @@ std::optional<analysis::SurfaceCrossing> CadSurfaces::intersect(std::uint32_t ge
     for (Standard_Integer i = 1; i <= x.NbPnt(); ++i) {
       const double w = x.WParameter(i) / len;
       if (!(w > 0) || x.Pnt(i).Distance(p0) > 2 * s.size + 1e-9 * scale) continue;
-      if (!best || std::abs(w - t0) < std::abs(best->t - t0)) best = analysis::SurfaceCrossing{w, normal_at(x.UParameter(i), x.VParameter(i))};
+      if (!best || std::abs(w - t0) < std::abs(best->t - t0)) best = analysis::SurfaceCrossing{w, normal_at(x.UParameter(i), x.VParameter(i)), x.State(i) == TopAbs_ON};
     }
     return best;
   } catch (const Standard_Failure&) {

@@ -19,6 +19,9 @@ struct SurfacePoint {
 struct SurfaceCrossing {
   double t;      // along the line
   Vec3d normal;  // unit outward normal of the face there (zero where undefined)
+  // On the face's boundary (a B-rep edge): whether the line leaves the solid there depends on
+  // the neighbouring faces too.
+  bool on_boundary = false;
 };
 
 // Every call is const and may run on many threads at once.
