@@ -62,6 +62,27 @@ void embree_exact_intersect(const RTCIntersectFunctionNArguments* args) {
 
 }  // namespace detail
 
+namespace {
+// An Embree query from org along dir over [tnear, tfar] (floats, as Embree takes them).
+RTCRayHit native_rayhit(Vec3d org, Vec3d dir, float tnear, float tfar) {
+  RTCRayHit rh;
+  rh.ray.org_x = float(org.x), rh.ray.org_y = float(org.y), rh.ray.org_z = float(org.z);
+  rh.ray.dir_x = float(dir.x), rh.ray.dir_y = float(dir.y), rh.ray.dir_z = float(dir.z);
+  rh.ray.tnear = tnear;
+  rh.ray.tfar = tfar;
+  rh.ray.time = 0.f;
+  rh.ray.mask = 0xFFFFFFFFu;  // Debian's Embree is built with ray masks
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
+// A query of Embree's native triangles for `ray` from tnear.
+RTCRayHit native_rayhit(const Ray& ray, float tnear) { return native_rayhit(ray.org, ray.dir, tnear, float(ray.tmax)); }
+}  // namespace
+
 EmbreeExactBase::EmbreeExactBase(const EmbreeAccel& acc, HitOrder order, EmbreeQuery::Mode mode, bool count)
     : acc_(&acc), count_(count) {
   q_.mode = mode;
@@ -106,17 +127,8 @@ bool EmbreeExactBase::setup(const Ray& ray) {
 }
 
 void EmbreeExactBase::trace(double lo, double hi) {
-  RTCRayHit rh;
-  rh.ray.org_x = float(org_.x), rh.ray.org_y = float(org_.y), rh.ray.org_z = float(org_.z);
-  rh.ray.dir_x = float(dir_.x), rh.ray.dir_y = float(dir_.y), rh.ray.dir_z = float(dir_.z);
-  rh.ray.tnear = q_.embree_near(lo);
-  rh.ray.tfar = std::isinf(hi) ? std::numeric_limits<float>::infinity() : q_.embree_far(hi);
-  rh.ray.time = 0.f;
-  rh.ray.mask = 0xFFFFFFFFu;  // Debian's Embree is built with ray masks
-  rh.ray.id = 0;
-  rh.ray.flags = 0;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  RTCRayHit rh = native_rayhit(org_, dir_, q_.embree_near(lo),
+                               std::isinf(hi) ? std::numeric_limits<float>::infinity() : q_.embree_far(hi));
   q_.lo = float(lo);
   q_.hi = float(hi);
   // Pointers into this object are set per query, not once: kernels are values and may have moved.
@@ -186,24 +198,6 @@ bool EmbreeNodeCullKernel::next(Hit& out) {
   q_.have_last = true;
   return true;
 }
-
-namespace {
-// A query of Embree's native triangles for `ray` from tnear (float, as Embree takes it).
-RTCRayHit native_rayhit(const Ray& ray, float tnear) {
-  RTCRayHit rh;
-  rh.ray.org_x = float(ray.org.x), rh.ray.org_y = float(ray.org.y), rh.ray.org_z = float(ray.org.z);
-  rh.ray.dir_x = float(ray.dir.x), rh.ray.dir_y = float(ray.dir.y), rh.ray.dir_z = float(ray.dir.z);
-  rh.ray.tnear = tnear;
-  rh.ray.tfar = float(ray.tmax);
-  rh.ray.time = 0.f;
-  rh.ray.mask = 0xFFFFFFFFu;  // Debian's Embree is built with ray masks
-  rh.ray.id = 0;
-  rh.ray.flags = 0;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  return rh;
-}
-}  // namespace
 
 EpsilonKernel::EpsilonKernel(const EmbreeAccel& acc, double epsilon_rel, bool count)
     : acc_(&acc), eps_(epsilon_rel * acc.scene().scale()), count_(count) {}

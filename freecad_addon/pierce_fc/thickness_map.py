@@ -22,6 +22,11 @@ def method_names():
     return tuple(_pierce().thickness_methods())
 
 
+def has_cad():
+    """Whether this Pierce build reads CAD (OpenCASCADE): needed to sample on the exact B-rep."""
+    return bool(getattr(_pierce(), "HAS_CAD", False))
+
+
 def sampling_names():
     """The sample locations, as the Pierce core names them (pierce.thickness_samplings())."""
     return tuple(_pierce().thickness_samplings())
@@ -29,13 +34,19 @@ def sampling_names():
 
 class ThicknessOptions:
     def __init__(self, method="ray", per="face", deflection=0.0, angular_deflection=15.0, max_edge=None,
-                 threshold=0.0, max_distance=math.inf, color_min=None, color_max=None, create_objects=True):
+                 threshold=0.0, max_distance=math.inf, color_min=None, color_max=None, create_objects=True,
+                 on_brep=None):
         self.method = method          # ray | cone | sphere
         self.per = per                # face (triangle centroids) | vertex
         self.deflection = deflection  # mm; 0 = 0.1% of the selection's diagonal
         self.angular_deflection = angular_deflection  # degrees
-        self.max_edge = max_edge      # mm: split longer triangle edges (samples on big flat faces);
-                                      # None = 4% of the selection's diagonal, 0 = no splitting
+        # On the exact B-rep (Pierce's CAD tessellation, checked against the B-rep, samples and exits
+        # on the exact faces: no false thin spots from the mesh) or on FreeCAD's mesh, as a mesh.
+        # None: on the B-rep when this Pierce build reads CAD (pierce.HAS_CAD).
+        self.on_brep = on_brep
+        self.max_edge = max_edge      # mm, FreeCAD's mesh only: split longer triangle edges (samples
+                                      # on big flat faces); None = 4% of the selection's diagonal,
+                                      # 0 = no splitting
         self.threshold = threshold    # thin below this (mm); 0 = no highlight
         self.max_distance = max_distance
         self.color_min = color_min    # legend range; None = the results' min / max
@@ -96,7 +107,8 @@ class ThicknessRun:
         for s in self.solids:
             st = s.stats.summary
             n = len(s.values)
-            line = ("Pierce thickness of '%s' (%s, per %s, %d samples): " % (s.label, o.method, o.per, n))
+            line = ("Pierce thickness of '%s' (%s, per %s, %d samples, %s): " %
+                    (s.label, o.method, o.per, n, "on the exact B-rep" if self.model.on_brep else "on FreeCAD's mesh"))
             if st.count:
                 line += "min %.4g, P5 %.4g, median %.4g, P95 %.4g, max %.4g" % (
                     st.min, s.percentile(5), s.percentile(50), s.percentile(95), st.max)
@@ -120,8 +132,9 @@ def compute(objects, options, progress=None, cancel=None):
     """Numbers only, no document objects. progress: a pierce_fc.progress.Progress or callable."""
     options.check()
     pierce = _pierce()
+    on_brep = options.on_brep if options.on_brep is not None else has_cad()
     model, warnings = mesh_objects(objects, options.deflection, options.angular_deflection, options.max_edge,
-                                   progress=progress, cancel=cancel)
+                                   progress=progress, cancel=cancel, on_brep=on_brep)
     start_stage(progress, "Pierce: thickness (%s)" % options.method)
     res = pierce.thickness(model.scene, method=options.method, per=options.per,
                            max_distance=options.max_distance, min_thickness=options.threshold,
@@ -166,6 +179,8 @@ def create_objects(doc, run):
         _add(obj, "App::PropertyFloat", "Deflection", "Pierce", "Tessellation deflection (mm)", run.model.deflection)
         _add(obj, "App::PropertyFloat", "MaxEdge", "Pierce", "Longest triangle edge (mm, 0: not limited)",
              run.model.max_edge)
+        _add(obj, "App::PropertyBool", "OnBrep", "Pierce",
+             "Sampled on the exact B-rep (Pierce's tessellation), not on FreeCAD's mesh", run.model.on_brep)
         _add(obj, "App::PropertyFloatList", "Thickness", "Pierce", "Thickness per sample, NaN where none",
              [float(v) for v in s.values])
         _add(obj, "App::PropertyFloat", "ThinThreshold", "Pierce", "Thin below this (0: off)", o.threshold)
@@ -181,7 +196,8 @@ def create_objects(doc, run):
         # depending on its length, when its Coloring is on.
         _add(obj, "App::PropertyColorList", "ThicknessColors", "Pierce", "False colours",
              [tuple(float(c) for c in row) for row in rgb])
-        for name in ("SourceObject", "SolidIndex", "Method", "Per", "Deflection", "MaxEdge", "Thickness", "ThinThreshold",
+        for name in ("SourceObject", "SolidIndex", "Method", "Per", "Deflection", "MaxEdge", "OnBrep", "Thickness",
+                     "ThinThreshold",
                      "ThinCount", "Minimum", "Median", "Maximum", "LegendMin", "LegendMax"):
             obj.setEditorMode(name, 1)  # read-only in the property editor
         group.addObject(obj)

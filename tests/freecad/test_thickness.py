@@ -51,7 +51,7 @@ def body(c):
 
     # Thin highlight: the narrow box's triangles facing x (4 mm across) are thin below 5 mm, the
     # others (10 mm across) are not.
-    run = thickness_map.run([b], ThicknessOptions(per="face", threshold=5.0), doc=doc)
+    run = thickness_map.run([b], ThicknessOptions(per="face", threshold=5.0, on_brep=False), doc=doc)
     s = run.solids[0]
     m = s.meshed
     n = np.cross(m.vertices[m.triangles[:, 1]] - m.vertices[m.triangles[:, 0]],
@@ -62,6 +62,30 @@ def body(c):
             % (x_facing, s.thin_count))
     colours = {tuple(round(x, 3) for x in col[:3]) for col in s.result_object.ThicknessColors}
     c.check((1.0, 0.0, 1.0) in colours, "thin triangles are magenta (colours %s)" % sorted(colours))
+
+    # On the exact B-rep (the default with a CAD-reading Pierce): a thin plate with 0.01 blends on
+    # its edges. FreeCAD's mesh, measured as a mesh, reads false thin spots where rays start on the
+    # blends' chords; on the B-rep every sample reads the sheet's 0.3 or more, and the minimum is 0.3.
+    plate = solids.thin_blended_plate(doc)
+    brep = thickness_map.run([plate], ThicknessOptions(per="face", create_objects=False))
+    mesh = thickness_map.run([plate], ThicknessOptions(per="face", on_brep=False, create_objects=False))
+    c.check(brep.model.on_brep and not mesh.model.on_brep, "on_brep: default on, off when asked")
+    bv, mv = brep.solids[0].valid, mesh.solids[0].valid
+    c.check(len(bv) > 100, "plate on the B-rep: %d valid samples" % len(bv))
+    c.near(float(bv.min()), 0.3, 1e-6 * 43, "plate on the B-rep: min is the sheet")
+    c.check(bool(np.all(bv >= 0.3 * (1 - 1e-6))), "plate on the B-rep: no sample under the sheet's 0.3")
+    c.near(brep.solids[0].stats.summary.min, 0.3, 1e-6 * 43, "plate on the B-rep: summary minimum")
+    c.check(float(mv.min()) < 0.5 * 0.3, "plate on FreeCAD's mesh: the false thin spots this is about (min %.4g)"
+            % float(mv.min()))
+    c.check("on the exact B-rep" in brep.summary() and "on FreeCAD's mesh" in mesh.summary(),
+            "the summary says where it sampled: " + brep.summary().splitlines()[0])
+    run = thickness_map.run([plate], ThicknessOptions(per="vertex"), doc=doc)
+    s = run.solids[0]
+    c.check(s.result_object.OnBrep, "result object: OnBrep")
+    c.check(len(s.result_object.ThicknessColors) == s.result_object.Mesh.CountPoints,
+            "B-rep mesh, per vertex: one colour per vertex of Pierce's mesh")
+    c.check(bool(np.all(s.valid >= 0.3 * (1 - 1e-6))), "plate per vertex on the B-rep: no sample under 0.3 (min %.6g)"
+            % float(s.valid.min()))
 
     # Hollow sphere, outer radius 1, inner 0.95: per-vertex ray thickness 0.05 within tessellation error.
     shell = solids.hollow_sphere(doc)

@@ -135,30 +135,28 @@ inline void detail_leaf(const Ops& ops, const TriBlock<T>* blocks, NodeRef ref, 
   for (std::uint32_t b = first; b < end; ++b) {
     const TriBlock<T>& blk = blocks[b];
     c.prim_tests += std::uint64_t(__builtin_popcount(blk.valid));
+    // The SIMD test's edge functions, handed to the exact tail (the scalar test computes its own).
+    [[maybe_unused]] simd::BlockEdges e;
+    std::uint32_t cand;
     if constexpr (Ops::kEdges) {
-      simd::BlockEdges e;
-      std::uint32_t cand = ops.tri_candidates(blk, e);
-      while (cand != 0) {
-        const int l = __builtin_ctz(cand);
-        cand &= cand - 1;
-        TriangleHit<T> th;
-        if (!intersect_given_edges(r, blk.corner(0, l), blk.corner(1, l), blk.corner(2, l), blk.sum[l], e.U[l], e.V[l],
-                                   e.W[l], p.lo(), p.hi(), th))
-          continue;
-        c.valid_hits += 1;
-        p.hit(blk, l, th);
-      }
+      cand = ops.tri_candidates(blk, e);
     } else {
-      std::uint32_t cand = ops.tri_candidates(blk);
-      while (cand != 0) {
-        const int l = __builtin_ctz(cand);
-        cand &= cand - 1;
-        TriangleHit<T> th;
-        if (!intersect(r, blk.corner(0, l), blk.corner(1, l), blk.corner(2, l), blk.sum[l], p.lo(), p.hi(), th))
-          continue;
-        c.valid_hits += 1;
-        p.hit(blk, l, th);
+      cand = ops.tri_candidates(blk);
+    }
+    while (cand != 0) {
+      const int l = __builtin_ctz(cand);
+      cand &= cand - 1;
+      TriangleHit<T> th;
+      bool hit;
+      if constexpr (Ops::kEdges) {
+        hit = intersect_given_edges(r, blk.corner(0, l), blk.corner(1, l), blk.corner(2, l), blk.sum[l], e.U[l],
+                                    e.V[l], e.W[l], p.lo(), p.hi(), th);
+      } else {
+        hit = intersect(r, blk.corner(0, l), blk.corner(1, l), blk.corner(2, l), blk.sum[l], p.lo(), p.hi(), th);
       }
+      if (!hit) continue;
+      c.valid_hits += 1;
+      p.hit(blk, l, th);
     }
   }
 }

@@ -17,7 +17,6 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <mutex>
 #include <stdexcept>
 #include <vector>
 
@@ -49,14 +48,15 @@ struct Start {
 
 }  // namespace
 
+// The whole-B-rep queries of exact_exit, per thread (as the classifiers below: an OpenCASCADE
+// algorithm object is not to be used by two threads at once) and per geometry, built on first use.
 struct CadSurfaces::Intersectors {
   struct OfGeom {
     IntCurvesFace_ShapeIntersector line;
     BRepClass3d_SolidClassifier inside;
     double tolerance = 0;
   };
-  std::mutex mutex;
-  std::map<std::uint32_t, std::unique_ptr<OfGeom>> of_geom;
+  tbb::enumerable_thread_specific<std::map<std::uint32_t, std::unique_ptr<OfGeom>>> per_thread;
 };
 
 // BRepTopAdaptor_FClass2d::Perform is const but not safe to call from two threads at once (it
@@ -98,9 +98,8 @@ CadSurfaces::~CadSurfaces() = default;
 std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin) const {
   const CadLink& l = links_.at(geom);
   if (l.empty() || l.faces->shape.IsNull()) return std::nullopt;
-  const std::lock_guard<std::mutex> lock(intersectors_->mutex);
   try {
-    auto& x = intersectors_->of_geom[geom];
+    auto& x = intersectors_->per_thread.local()[geom];
     if (!x) {
       x = std::make_unique<Intersectors::OfGeom>();
       Bnd_Box box;

@@ -27,14 +27,26 @@ class ThicknessPanel(PanelBase):
                                "diameter function over 30 rays; sphere: largest inscribed ball")
         self.per = QtWidgets.QComboBox()
         self.per.addItems(["faces", "vertices"])
-        self.per.setToolTip("faces: one value per triangle (exact on flat walls); vertices: smooth colours, "
-                            "but vertices on sharp edges use an averaged normal")
+        self.per.setToolTip("faces: one value per triangle; vertices: smooth colours (on the B-rep a vertex on "
+                            "an edge shows the smaller of its faces' walls; on FreeCAD's mesh it uses an "
+                            "averaged normal)")
         self.deflection = double_spin(0.0, 0.0, 1e6, special="automatic (0.1% of size)", step=0.01)
         self.angular = double_spin(15.0, 1.0, 90.0, decimals=1, suffix=" deg")
+        try:
+            has_cad = thickness_map.has_cad()
+        except PierceUnavailable:
+            has_cad = False
+        self.on_brep = check_box("On the exact B-rep", has_cad,
+                                 tooltip="Samples start on the exact faces and exits are refined on them; the "
+                                         "tessellation is checked against the B-rep (no false thin spots from "
+                                         "the mesh). Off: FreeCAD's mesh, measured as a mesh, with split edges")
         self.split = check_box("Split triangle edges longer than", True,
-                               tooltip="More samples on large flat faces (whose CAD triangles are few and big)")
+                               tooltip="FreeCAD's mesh only: more samples on large flat faces (whose CAD "
+                                       "triangles are few and big)")
         self.max_edge = double_spin(0.0, 0.0, 1e6, special="automatic (4% of size)", step=0.1)
-        self.split.toggled.connect(self.max_edge.setEnabled)
+        self.split.toggled.connect(lambda on: self.max_edge.setEnabled(on and not self.on_brep.isChecked()))
+        self.on_brep.toggled.connect(self._brep_toggled)
+        self._brep_toggled(self.on_brep.isChecked())
         self.threshold = double_spin(0.0, 0.0, 1e6, special="off", step=0.1)
         self.threshold.setToolTip("Samples thinner than this are coloured magenta")
         self.auto_range = check_box("from the results", True)
@@ -48,6 +60,7 @@ class ThicknessPanel(PanelBase):
         f.addRow("Samples", self.per)
         f.addRow("Deflection", self.deflection)
         f.addRow("Angular deflection", self.angular)
+        f.addRow(self.on_brep)
         f.addRow(self.split, self.max_edge)
         f.addRow("Thin below", self.threshold)
         f.addRow("Legend range", self.auto_range)
@@ -55,6 +68,11 @@ class ThicknessPanel(PanelBase):
         f.addRow("  max (blue)", self.range_max)
         f.addRow(self.hide_sources)
         layout.addWidget(box)
+
+    def _brep_toggled(self, on):
+        """Splitting applies to FreeCAD's mesh only (Pierce's B-rep triangles stay linked to their faces)."""
+        self.split.setEnabled(not on)
+        self.max_edge.setEnabled(not on and self.split.isChecked())
 
     def build_results(self, layout):
         self.legend = Legend()
@@ -108,6 +126,7 @@ class ThicknessPanel(PanelBase):
                                 per="face" if self.per.currentIndex() == 0 else "vertex",
                                 deflection=self.deflection.value(), angular_deflection=self.angular.value(),
                                 max_edge=(self.max_edge.value() or None) if self.split.isChecked() else 0.0,
+                                on_brep=self.on_brep.isChecked(),
                                 threshold=self.threshold.value(),
                                 color_min=None if auto else self.range_min.value(),
                                 color_max=None if auto else self.range_max.value())

@@ -51,7 +51,7 @@ class ExactSurfaces {
   // geometry `geom` for its outside, from an exact intersection with every face; nullopt when
   // there is none. Touching a face (tangent to it, or running in it) is not leaving: a ray from a
   // rim down the face below it stays on the boundary, then inside, and leaves where the material
-  // ends. Much slower than intersect(), and serialised: for the rare samples that need it.
+  // ends. Much slower than intersect(): for the rare samples that need it.
   virtual std::optional<double> exact_exit(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin) const = 0;
 };
 
