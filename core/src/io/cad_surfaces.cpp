@@ -111,29 +111,23 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
     const gp_Lin line(gp_Pnt(org.x, org.y, org.z), gp_Dir(dir.x, dir.y, dir.z));
     x->line.Perform(line, tmin, std::numeric_limits<double>::infinity());
     if (!x->line.IsDone()) return std::nullopt;
-    // Where the line crosses a face (touching one, tangent to it or running in it, is no
-    // crossing), nearest first.
-    struct Crossing {
-      double t;
-      bool clean_exit;  // through a face's interior, leaving the solid
-    };
-    std::vector<Crossing> crossings;
+    // Where the line crosses a face (touching one, tangent to it, is no crossing), nearest first.
+    std::vector<double> crossings;
     for (Standard_Integer i = 1; i <= x->line.NbPnt(); ++i)
       if (x->line.Transition(i) != IntCurveSurface_Tangent && x->line.WParameter(i) > tmin)
-        crossings.push_back({x->line.WParameter(i), x->line.Transition(i) == IntCurveSurface_Out &&
-                                                          x->line.State(i) == TopAbs_IN});
-    std::sort(crossings.begin(), crossings.end(), [](const Crossing& a, const Crossing& b) { return a.t < b.t; });
-    // The ray leaves at the first crossing beyond which it is outside the solid. A clean exit
-    // through a face is that; a crossing at a face's edge, or where the ray runs along the
-    // boundary (a vertex sample on a rim, down the face below it: OpenCASCADE then reports
-    // crossings of every edge it passes, with any transition), is settled by classifying the
-    // line between it and the next crossing. Beyond the last crossing the line is outside.
+        crossings.push_back(x->line.WParameter(i));
+    std::sort(crossings.begin(), crossings.end());
+    // The ray leaves at the first crossing beyond which it is outside the solid, settled by
+    // classifying the line between it and the next crossing: OpenCASCADE's transitions cannot be
+    // trusted where the line runs in a face (a vertex sample on a rim, down the face below it: it
+    // reports a crossing, "out" through the face's interior, every 1e-4 along it). Beyond the last
+    // crossing the line is outside.
     for (std::size_t i = 0; i < crossings.size(); ++i) {
-      if (crossings[i].clean_exit || i + 1 == crossings.size()) return crossings[i].t;
-      const double mid = 0.5 * (crossings[i].t + crossings[i + 1].t);
-      if (mid - crossings[i].t <= x->tolerance) continue;  // the same crossing, reported twice
+      if (i + 1 == crossings.size()) return crossings[i];
+      const double mid = 0.5 * (crossings[i] + crossings[i + 1]);
+      if (mid - crossings[i] <= x->tolerance) continue;  // the same crossing, reported twice
       x->inside.Perform(line.Location().Translated(gp_Vec(line.Direction()) * mid), x->tolerance);
-      if (x->inside.State() == TopAbs_OUT) return crossings[i].t;
+      if (x->inside.State() == TopAbs_OUT) return crossings[i];
     }
     return std::nullopt;
   } catch (const Standard_Failure&) {
