@@ -70,6 +70,13 @@ def mesh_solid(shape, deflection, angular_deflection_deg=15.0):
     return welded, tri[keep], np.asarray(owner, dtype=np.int64)[keep]
 
 
+def checked_deflection(deflection, refs):
+    """The deflection to mesh `refs` with: a positive length as given, or for 0 auto_deflection."""
+    if deflection < 0 or not math.isfinite(deflection):
+        raise UserError("The deflection must be a positive length (or 0 for automatic).")
+    return deflection if deflection > 0 else auto_deflection([r.shape for r in refs])
+
+
 def auto_max_edge(shapes):
     """4% of the diagonal of the shapes' common bounding box: a few thousand triangles per part."""
     return auto_deflection(shapes) * 40.0
@@ -81,10 +88,7 @@ def build_model(refs, deflection=0.0, angular_deflection_deg=15.0, max_edge=0.0,
     progress(done, total) is called after each solid; returning False stops with pierce.Cancelled."""
     from .locate import import_pierce
     pierce = import_pierce()
-    if deflection < 0 or not math.isfinite(deflection):
-        raise UserError("The deflection must be a positive length (or 0 for automatic).")
-    if deflection == 0:
-        deflection = auto_deflection([r.shape for r in refs])
+    deflection = checked_deflection(deflection, refs)
     if max_edge is None:
         max_edge = auto_max_edge([r.shape for r in refs])
     elif max_edge < 0 or not math.isfinite(max_edge):
@@ -122,10 +126,7 @@ def brep_model(refs, deflection=0.0, angular_deflection_deg=15.0, progress=None)
     pierce = import_pierce()
     if not getattr(pierce, "HAS_CAD", False):
         raise UserError("This Pierce build has no OpenCASCADE: sampling on the exact B-rep needs it.")
-    if deflection < 0 or not math.isfinite(deflection):
-        raise UserError("The deflection must be a positive length (or 0 for automatic).")
-    if deflection == 0:
-        deflection = auto_deflection([r.shape for r in refs])
+    deflection = checked_deflection(deflection, refs)
     scene = pierce.Scene()
     solids, warnings = [], []
     with tempfile.TemporaryDirectory(prefix="pierce_brep_") as d:

@@ -385,7 +385,6 @@ SampleSet build_point_samples(const Scene& scene, const ThicknessOptions& opts, 
       if (given != Vec3d{}) at.inward = given * -1.0;
       if (cs.preset == ThicknessStatus::ok && at.inward == Vec3d{}) cs.preset = ThicknessStatus::no_normal;
       s = cs;
-      s.cad = 0;  // placed below, in input order
       cads[i] = at;
     }
     samples[i] = s;
@@ -397,7 +396,7 @@ SampleSet build_point_samples(const Scene& scene, const ThicknessOptions& opts, 
     s.exclude_begin = std::uint32_t(set.exclude.size());
     set.exclude.push_back(res.element[i]);
     s.exclude_end = s.exclude_begin + 1;
-    if (s.is_cad()) {
+    if (is_cad(opts, s.geom)) {
       set.add_cad(s, cads[i]);
     } else {
       set.samples.push_back(s);
