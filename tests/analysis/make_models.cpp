@@ -11,6 +11,7 @@
 #include <TopoDS_Solid.hxx>
 
 #include <cstdio>
+#include <filesystem>
 #include <exception>
 #include <string>
 
@@ -37,11 +38,13 @@ int main(int argc, char** argv) {
   Message::DefaultMessenger()->ChangePrinters().Clear();  // no transfer statistics on stdout
   const std::string dir = argv[1];
   try {
+    std::filesystem::create_directories(dir);
     namespace tm = pierce::test_models;
     tm::write_step_assembly(dir + "/assembly.step");
     tm::write_brep(tm::bent_sheet(), dir + "/sheet.brep");
     tm::write_brep(tm::with_folded_triangle(tm::filleted_box(), 0.01), dir + "/folded.brep");
     tm::write_brep(tm::hollow_torus(), dir + "/torus.brep");
+    tm::write_brep(tm::thin_blended_plate(), dir + "/thin_plate.brep");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "make_models: %s\n", e.what());
     return 1;

@@ -9,6 +9,9 @@ writes OUT/<case>/rank<r>.json.
 Cases (inputs written to DATA by `--make-inputs`, serially, before the runs):
   sphere  hollow sphere (two concentric UV spheres, wall 0.1), thickness per point and per cell
   step    the bundled STEP assembly (Pierce CAD reader), thickness per cell
+  brep    MODELS/thin_plate.brep (pierce_make_test_models: a 0.3 sheet with blended edges) through
+          the CAD reader: thickness per point and per cell on the exact B-rep, whose minimum is
+          0.3 where the bare mesh reads 0.07
   plates  samples/plates.obj as ten blocks (touching plates), overlaps
   lines   line cells only (bad input): refused with an error on every rank
   volume  a Wavelet volume spread by D3 (its pieces' boundaries include the cut): refused
@@ -197,9 +200,10 @@ def table_rows(table):
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("--plugin", required=True)
-    p.add_argument("--cases", default="sphere,step,plates,csg,limit,lines,volume")
+    p.add_argument("--cases", default="sphere,step,brep,plates,csg,limit,lines,volume")
     p.add_argument("--data", required=True)
     p.add_argument("--samples")
+    p.add_argument("--models")
     p.add_argument("--out")
     p.add_argument("--make-inputs", action="store_true")
     args = p.parse_args()
@@ -242,6 +246,11 @@ def run_case(case, args, rank):
         model = D3(Input=PierceCADReader(FileName=os.path.join(args.samples, "plate_assembly.step")))
         runs.append(("cells", PierceThickness(Input=model, SampleAt="Cells", MinThickness=3.0),
                      ["Thickness", "ThicknessStatus", "Thin", "SolidId"], True))
+    elif case == "brep":
+        model = D3(Input=PierceCADReader(FileName=os.path.join(args.models, "thin_plate.brep")))
+        for at in ("Points", "Cells"):
+            runs.append((at, PierceThickness(Input=model, SampleAt=at),
+                         ["Thickness", "ThicknessStatus", "Thin", "SolidId", "BRepFaces"], at == "Cells"))
     elif case == "plates":
         model = D3(Input=XMLMultiBlockDataReader(FileName=[os.path.join(args.data, "plates.vtm")]))
         runs.append(("overlaps", PierceOverlaps(Input=model, RaysPerAxis=24),
@@ -267,7 +276,11 @@ def run_case(case, args, rank):
             items = keyed
         else:
             items = records(surfaces, arrays, per_cell)
-        result["runs"][label] = {"items": items, "table": table_rows(table), "per_cell": per_cell}
+        result["runs"][label] = {"items": items, "table": table_rows(table), "per_cell": per_cell,
+                                 "columns": {table.GetColumnName(c): [table.GetColumn(c).GetTuple1(r)
+                                                                     for r in range(table.GetNumberOfRows())]
+                                             for c in range(table.GetNumberOfColumns())
+                                             if table.GetColumn(c).IsA("vtkDataArray")}}
     return result
 
 

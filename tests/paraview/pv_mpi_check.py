@@ -73,7 +73,8 @@ def compare(serial, parallel):
     return problems
 
 
-FILTER = {"lines": "", "volume": "", "limit": "", "sphere": "Pierce Thickness", "step": "Pierce Thickness", "plates": "Pierce Overlaps",
+FILTER = {"lines": "", "volume": "", "limit": "", "sphere": "Pierce Thickness", "step": "Pierce Thickness", "brep": "Pierce Thickness",
+          "plates": "Pierce Overlaps",
           "csg": "Pierce Ray Classify"}
 
 
@@ -85,6 +86,7 @@ def main():
     p.add_argument("--plugin")
     p.add_argument("--case")
     p.add_argument("--samples")
+    p.add_argument("--models")
     p.add_argument("--work", required=True)
     args = p.parse_args()
     dirs = {name: os.path.join(args.work, name) for name in ("data", "serial", "mpi", "no_gather")}
@@ -92,7 +94,7 @@ def main():
         script = os.path.join(HERE, "pv_mpi_case.py")
         for d in dirs.values():
             os.makedirs(d, exist_ok=True)
-        common = ["--plugin", args.plugin, "--data", dirs["data"], "--samples", args.samples]
+        common = ["--plugin", args.plugin, "--data", dirs["data"], "--samples", args.samples, "--models", args.models]
         env = dict(os.environ)
         env.pop("PIERCE_VTK_NO_GATHER", None)
         run([args.pvbatch, script, "--make-inputs"] + common, env)
@@ -135,10 +137,10 @@ def main():
     problems = compare(serial, load(os.path.join(dirs["mpi"], args.case), 2))
     # Nothing measured twice: the thickness runs report how many samples each rank measured;
     # their sum is the number of distinct samples (run order of pv_mpi_case.py: sphere Points,
-    # sphere Cells, step).
+    # sphere Cells, step, brep Points, brep Cells).
     with open(os.path.join(args.work, "mpi.log")) as f:
         measured = [int(n) for n in re.findall(r"samples measured per rank: [0-9 +]+ = ([0-9]+)", f.read())]
-    first = {"sphere": 0, "step": 2}.get(args.case)
+    first = {"sphere": 0, "step": 2, "brep": 3}.get(args.case)
     if first is not None:
         for k, (label, serial_run) in enumerate(serial[0]["runs"].items()):
             n = measured[first + k] if first + k < len(measured) else None
@@ -147,6 +149,13 @@ def main():
             if n != len(serial_run["items"]):
                 problems.append("%s: the ranks measured %s samples, not %d: some twice or none" %
                                 (label, n, len(serial_run["items"])))
+    if args.case == "brep":  # on the exact B-rep: the sheet's 0.3, not the mesh's 0.07
+        for label, serial_run in serial[0]["runs"].items():
+            columns = serial_run["columns"]
+            print("%s: OnBRep %s, min %s" % (label, columns.get("OnBRep"), columns.get("Min")))
+            if columns.get("OnBRep") != [1.0] or not columns.get("Min") or abs(columns["Min"][0] - 0.3) > 1e-6:
+                problems.append("%s: not measured on the exact B-rep (OnBRep %s, min %s, expected 0.3)" %
+                                (label, columns.get("OnBRep"), columns.get("Min")))
     for problem in problems:
         print("FAIL: " + problem)
     if problems:

@@ -30,26 +30,6 @@ namespace pierce_vtk {
 
 namespace pa = pierce::analysis;
 
-std::vector<std::vector<std::uint8_t>> TessellationFlags(const Surfaces& surfaces) {
-  std::vector<std::vector<std::uint8_t>> flags(surfaces.scene.geometries().size());
-  bool any = false;
-  for (const Solid& solid : surfaces.solids) {
-    vtkDataArray* folded = solid.surface->GetCellData()->GetArray("TessellationFolded");
-    if (!folded || folded->GetNumberOfComponents() != 1) continue;
-    auto& f = flags[solid.id];
-    const std::size_t n = surfaces.scene.geometry(solid.id).triangles.size();
-    if (folded->GetNumberOfTuples() != solid.surface->GetNumberOfCells()) continue;
-    f.assign(n, 0);
-    for (vtkIdType c = 0; c < folded->GetNumberOfTuples(); ++c) {
-      const std::uint32_t prim = PrimOfCell(solid, c);
-      if (prim < n) f[prim] = folded->GetTuple1(c) != 0;
-    }
-    any = true;
-  }
-  if (!any) flags.clear();
-  return flags;
-}
-
 void AttachThickness(const pa::ThicknessResult& result, Surfaces& surfaces) {
   const bool per_cell = result.per == pa::SampleAt::face;
   struct Arrays {
@@ -57,7 +37,9 @@ void AttachThickness(const pa::ThicknessResult& result, Surfaces& surfaces) {
     vtkSmartPointer<vtkUnsignedCharArray> thin = vtkSmartPointer<vtkUnsignedCharArray>::New();
     vtkSmartPointer<vtkUnsignedCharArray> status = vtkSmartPointer<vtkUnsignedCharArray>::New();
     vtkSmartPointer<vtkIntArray> solid = vtkSmartPointer<vtkIntArray>::New();
+    vtkSmartPointer<vtkUnsignedCharArray> brep_faces;  // CAD input on its B-rep only
   };
+  const bool with_brep_faces = !result.brep_faces.empty();
   std::vector<Arrays> arrays(surfaces.solids.size());
   for (std::size_t g = 0; g < surfaces.solids.size(); ++g) {
     vtkPolyData* surface = surfaces.solids[g].surface;
@@ -75,6 +57,12 @@ void AttachThickness(const pa::ThicknessResult& result, Surfaces& surfaces) {
     a.thin->Fill(0);
     a.status->Fill(static_cast<unsigned char>(pa::ThicknessStatus::no_normal));
     a.solid->Fill(static_cast<int>(surfaces.solids[g].id));
+    if (with_brep_faces) {
+      a.brep_faces = vtkSmartPointer<vtkUnsignedCharArray>::New();
+      a.brep_faces->SetName("BRepFaces");
+      a.brep_faces->SetNumberOfValues(n);
+      a.brep_faces->Fill(0);
+    }
   }
   // Result entries are (scene geometry, scene element); map them to this rank's solids.
   std::vector<int> local_of(surfaces.scene.geometries().size(), -1);
@@ -103,6 +91,7 @@ void AttachThickness(const pa::ThicknessResult& result, Surfaces& surfaces) {
     a.thickness->SetValue(e, result.thickness[i]);
     a.thin->SetValue(e, result.thin[i]);
     a.status->SetValue(e, static_cast<unsigned char>(result.status[i]));
+    if (with_brep_faces) a.brep_faces->SetValue(e, result.brep_faces[i]);
   }
   for (std::size_t g = 0; g < surfaces.solids.size(); ++g) {
     vtkPolyData* surface = surfaces.solids[g].surface;
@@ -112,6 +101,7 @@ void AttachThickness(const pa::ThicknessResult& result, Surfaces& surfaces) {
     data->AddArray(arrays[g].thin);
     data->AddArray(arrays[g].status);
     data->AddArray(arrays[g].solid);
+    if (arrays[g].brep_faces) data->AddArray(arrays[g].brep_faces);
     data->SetActiveScalars("Thickness");
   }
 }
@@ -131,6 +121,7 @@ void WriteThicknessTable(const std::vector<pa::SolidThickness>& solids, const st
   auto no_normal = column(vtkSmartPointer<vtkIdTypeArray>::New(), "NoNormal");
   auto thin = column(vtkSmartPointer<vtkIdTypeArray>::New(), "Thin");
   auto tessellation = column(vtkSmartPointer<vtkIdTypeArray>::New(), "Tessellation");
+  auto on_brep = column(vtkSmartPointer<vtkUnsignedCharArray>::New(), "OnBRep");
   auto min = column(vtkSmartPointer<vtkDoubleArray>::New(), "Min");
   auto max = column(vtkSmartPointer<vtkDoubleArray>::New(), "Max");
   auto mean = column(vtkSmartPointer<vtkDoubleArray>::New(), "Mean");
@@ -150,6 +141,7 @@ void WriteThicknessTable(const std::vector<pa::SolidThickness>& solids, const st
     no_normal->InsertNextValue(static_cast<vtkIdType>(s.no_normal));
     thin->InsertNextValue(static_cast<vtkIdType>(s.thin));
     tessellation->InsertNextValue(static_cast<vtkIdType>(s.tessellation));
+    on_brep->InsertNextValue(s.exact ? 1 : 0);
     const bool any = s.summary.count > 0;
     min->InsertNextValue(any ? s.summary.min : nan);
     max->InsertNextValue(any ? s.summary.max : nan);
@@ -238,11 +230,13 @@ void ShareVertexResults(const Surfaces& surfaces, const VertexOwners& owners, co
     if (!owners.shared[g][group] || owners.owner[g][group] != surfaces.rank || !sent.insert({g, group}).second)
       continue;
     mine.insert(mine.end(), {double(g), double(group), result.thickness[i], double(result.status[i]),
-                             double(result.thin[i])});
+                             double(result.thin[i]), result.brep_faces.empty() ? 0.0 : double(result.brep_faces[i])});
   }
+  constexpr std::size_t kFields = 6;
   const std::vector<double> all = distribution.AllGather(mine);
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> from;
-  for (std::size_t k = 0; k + 5 <= all.size(); k += 5) from[{std::uint32_t(all[k]), std::uint32_t(all[k + 1])}] = k;
+  for (std::size_t k = 0; k + kFields <= all.size(); k += kFields)
+    from[{std::uint32_t(all[k]), std::uint32_t(all[k + 1])}] = k;
   for (const Solid& solid : surfaces.solids) {
     const std::uint32_t g = solid.id;
     const std::vector<std::uint8_t> used = UsedPoints(solid.surface);
@@ -260,6 +254,7 @@ void ShareVertexResults(const Surfaces& surfaces, const VertexOwners& owners, co
       result.thickness.push_back(all[k + 2]);
       result.status.push_back(static_cast<pa::ThicknessStatus>(int(all[k + 3])));
       result.thin.push_back(static_cast<std::uint8_t>(all[k + 4]));
+      if (!result.brep_faces.empty()) result.brep_faces.push_back(static_cast<std::uint8_t>(all[k + 5]));
     }
   }
 }
@@ -328,6 +323,7 @@ std::vector<pa::SolidThickness> GatherThicknessStatistics(const Surfaces& surfac
     solids[g].geom = std::uint32_t(g);
     solids[g].name = surfaces.scene.geometry(std::uint32_t(g)).name;
     solids[g].valid = values[g].size();
+    solids[g].exact = options.exact && options.exact->covers(std::uint32_t(g));
     solids[g].summary = pa::summarize(std::move(values[g]), options.percentiles, options.histogram_bins);
   }
   return solids;

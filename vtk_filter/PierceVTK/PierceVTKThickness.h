@@ -14,17 +14,14 @@ namespace pierce_vtk {
 class Distribution;
 struct Surfaces;
 
-// Per scene geometry, the input's `TessellationFolded` cell array (vtkPierceCADReader: triangles
-// where the CAD tessellation folds), for ThicknessOptions::tessellation_flags; empty when no
-// solid has one.
-std::vector<std::vector<std::uint8_t>> TessellationFlags(const Surfaces& surfaces);
-
 // Point (per vertex) or cell (per face) arrays Thickness, Thin, ThicknessStatus, SolidId on each
-// solid's surface; Thickness becomes the active scalars.
+// solid's surface, and BRepFaces when the result has them (CAD input on its B-rep: the faces
+// sampled at the element, 2 or more at a vertex on an edge); Thickness becomes the active scalars.
 void AttachThickness(const pierce::analysis::ThicknessResult& result, Surfaces& surfaces);
 
-// One row per solid: SolidId, Name, Elements, Valid, NoExit, NoNormal, Thin, Min, Max, Mean and
-// the percentiles as P<q> (one column per entry of `percentiles`).
+// One row per solid: SolidId, Name, Elements, Valid, NoExit, NoNormal, Thin, Tessellation,
+// OnBRep (1: measured on the exact B-rep), Min, Max, Mean and the percentiles as P<q> (one column
+// per entry of `percentiles`).
 void WriteThicknessTable(const std::vector<pierce::analysis::SolidThickness>& solids,
                          const std::vector<double>& percentiles, vtkTable* table);
 

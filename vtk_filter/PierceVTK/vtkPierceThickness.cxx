@@ -9,12 +9,14 @@
 #include <vtkObjectFactory.h>
 #include <vtkTable.h>
 
+#include "PierceVTKBRep.h"
 #include "PierceVTKDistributed.h"
 #include "PierceVTKEnums.h"
 #include "PierceVTKFilterSteps.h"
 #include "PierceVTKProgress.h"
 #include "PierceVTKSurfaces.h"
 #include "PierceVTKThickness.h"
+#include "pierce/io/cad_surfaces.h"
 #include "pierce/kernel.h"
 
 vtkStandardNewMacro(vtkPierceThickness);
@@ -132,7 +134,17 @@ int vtkPierceThickness::AnalyseSurfaces(
   const pierce_vtk::Surfaces& surfaces = run.surfaces;
   pierce::analysis::ThicknessOptions options = ThicknessOptionsOf(*this);
   const bool perCell = this->SampleAt == CELLS;
-  options.tessellation_flags = pierce_vtk::TessellationFlags(surfaces);
+  // CAD reader output: measured on the exact B-rep where the link to it holds.
+  const pierce_vtk::CadInput cad = pierce_vtk::FindCadInput(surfaces, run.distribution);
+  options.tessellation_flags = cad.folded;
+  options.exact = cad.exact.get();
+  if (run.distribution.IsRoot())
+  {
+    for (const std::string& warning : cad.warnings)
+    {
+      vtkWarningMacro(<< warning);
+    }
+  }
   pierce_vtk::VertexOwners owners;
   if (surfaces.distributed)
   {
@@ -158,6 +170,11 @@ int vtkPierceThickness::AnalyseSurfaces(
   if (!run.distribution.AllTrue(result.completed && !progress.CheckAbort()))
   {
     return 1; // aborted: the executive hands out empty outputs
+  }
+  if (options.exact)
+  {
+    // Every rank the same arrays, whether or not its own samples lie on a B-rep.
+    result.brep_faces.resize(result.size(), 0);
   }
   if (surfaces.distributed)
   {

@@ -8,9 +8,19 @@
  *  - Thickness: distance through the solid (NaN where there is none: open mesh, no exit within
  *    MaxDistance, or no usable normal);
  *  - Thin: 1 where Thickness < MinThickness;
- *  - ThicknessStatus: 0 ok, 1 no exit, 2 no normal;
- *  - SolidId: the solid (block) index.
- * Output 1 (vtkTable): per-solid statistics (counts, min, max, mean, percentiles).
+ *  - ThicknessStatus: 0 ok, 1 no exit, 2 no normal, 3 tessellation (CAD input: an artefact of
+ *    the mesh, left out of the statistics);
+ *  - SolidId: the solid (block) index;
+ *  - BRepFaces (CAD input on its B-rep): B-rep faces sampled at the element, 2 or more at a
+ *    vertex on an edge (the value is the smallest of their samples).
+ * Output 1 (vtkTable): per-solid statistics (counts, min, max, mean, percentiles; OnBRep).
+ *
+ * CAD input (vtkPierceCADReader output, also after D3 or block extraction) is measured on the
+ * exact B-rep, as `pierce thickness` measures STEP files: samples start on the exact faces along
+ * their exact normals and exits are refined on them (pierce/analysis/thickness.h). That needs the
+ * reader's model in this process and triangles as read; where either is missing (a moved or cut
+ * surface, data saved and read back), the solid is measured on its mesh and a warning says why
+ * (PierceVTKBRep.h).
  *
  * Methods: Ray (from each sample along the inward normal to where the ray leaves the solid it
  * started in; touching neighbours and coincident faces of other solids do not change it), Cone

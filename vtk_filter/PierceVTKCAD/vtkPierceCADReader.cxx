@@ -1,5 +1,6 @@
 #include "vtkPierceCADReader.h"
 
+#include <cstdint>
 #include <exception>
 #include <string>
 
@@ -18,16 +19,49 @@
 #include <vtkSmartPointer.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkStringArray.h>
+#include <vtkTypeInt64Array.h>
 #include <vtkUnsignedCharArray.h>
 
 #include "pierce/io/cad_io.h"
+#include "pierce/io/cad_registry.h"
 
 vtkStandardNewMacro(vtkPierceCADReader);
 
 namespace
 {
 
-vtkSmartPointer<vtkPolyData> ToPolyData(const pierce::CadSolid& solid, int solidId)
+// The link of each triangle to its B-rep face, for vtkPierceThickness (PierceVTKBRep.h): the
+// registered model, the solid in it, the face and the (u, v) of the triangle's corners there.
+void AddBRepLink(const pierce::CadSolid& solid, std::int64_t modelKey, int solidId, vtkCellData* cells)
+{
+  const auto n = static_cast<vtkIdType>(solid.triangles.size());
+  auto model = vtkSmartPointer<vtkTypeInt64Array>::New();
+  model->SetName("BRepModel");
+  model->SetNumberOfValues(n);
+  model->FillValue(modelKey);
+  auto solidIds = vtkSmartPointer<vtkIntArray>::New();
+  solidIds->SetName("BRepSolid");
+  solidIds->SetNumberOfValues(n);
+  solidIds->Fill(solidId);
+  auto faces = vtkSmartPointer<vtkIntArray>::New();
+  faces->SetName("BRepFace");
+  faces->SetNumberOfValues(n);
+  auto uv = vtkSmartPointer<vtkDoubleArray>::New();
+  uv->SetName("BRepUV");
+  uv->SetNumberOfComponents(6);
+  uv->SetNumberOfTuples(n);
+  for (vtkIdType t = 0; t < n; ++t)
+  {
+    faces->SetValue(t, static_cast<int>(solid.link.face[static_cast<std::size_t>(t)]));
+    uv->SetTypedTuple(t, solid.link.uv[static_cast<std::size_t>(t)].data());
+  }
+  cells->AddArray(model);
+  cells->AddArray(solidIds);
+  cells->AddArray(faces);
+  cells->AddArray(uv);
+}
+
+vtkSmartPointer<vtkPolyData> ToPolyData(const pierce::CadSolid& solid, int solidId, std::int64_t modelKey)
 {
   auto points = vtkSmartPointer<vtkPoints>::New();
   points->SetDataTypeToDouble();
@@ -64,6 +98,10 @@ vtkSmartPointer<vtkPolyData> ToPolyData(const pierce::CadSolid& solid, int solid
   poly->SetPolys(triangles);
   poly->GetCellData()->AddArray(ids);
   poly->GetCellData()->AddArray(folded);
+  if (!solid.link.empty())
+  {
+    AddBRepLink(solid, modelKey, solidId, poly->GetCellData());
+  }
   return poly;
 }
 
@@ -108,6 +146,8 @@ int vtkPierceCADReader::RequestData(
     vtkErrorMacro(<< e.what());
     return 0;
   }
+  // Every rank loads the file, so every rank can look the faces up under the same key.
+  const std::int64_t modelKey = pierce::register_cad_model(this->FileName, options, model);
   for (const std::string& warning : model.warnings)
   {
     vtkWarningMacro(<< this->FileName << ": " << warning);
@@ -125,7 +165,7 @@ int vtkPierceCADReader::RequestData(
   {
     const auto block = static_cast<unsigned int>(i);
     output->SetBlock(block,
-      piece == 0 ? ToPolyData(model.solids[i], static_cast<int>(i)) : vtkSmartPointer<vtkPolyData>::New());
+      piece == 0 ? ToPolyData(model.solids[i], static_cast<int>(i), modelKey) : vtkSmartPointer<vtkPolyData>::New());
     output->GetMetaData(block)->Set(vtkCompositeDataSet::NAME(), model.solids[i].name.c_str());
   }
   auto units = vtkSmartPointer<vtkStringArray>::New();
