@@ -4,6 +4,7 @@ GUI-free: run() takes document objects and options, returns a ThicknessRun holdi
 the result objects it created (one Mesh::Feature per solid, in a group), and a summary for the
 Report view. The analysed objects are not modified.
 """
+import hashlib
 import math
 import os
 import tempfile
@@ -276,16 +277,31 @@ def caliper(obj, subname, point, method="ray", max_distance=math.inf):
             break
     if solid is None:
         raise UserError("%s of '%s' is not on a solid." % (subname, obj.Label))
-    with tempfile.TemporaryDirectory(prefix="pierce_caliper_") as d:
-        path = os.path.join(d, "solid.brep")
-        solid.exportBrep(path)
-        scene = pierce.Scene()
-        pierce.add_model_files(scene, [path])
+    scene = _caliper_scene(pierce, solid)
     r = pierce.thickness_at(scene, 0, [[float(point[0]), float(point[1]), float(point[2])]], method=method,
                             max_distance=max_distance)
     status = pierce.THICKNESS_STATUS[int(r.status[0])]
     return CaliperReading(obj.Label, subname, float(r.thickness[0]), status, tuple(float(v) for v in r.point[0]),
                           tuple(float(v) for v in r.normal[0]))
+
+
+# The scene of the solid the caliper read last, by the digest of its BREP text: clicks on one
+# part load and mesh it once; any change of the solid (shape or placement) gives another digest.
+_caliper_cache = {}
+
+
+def _caliper_scene(pierce, solid):
+    digest = hashlib.sha256(solid.exportBrepToString().encode()).hexdigest()
+    scene = _caliper_cache.get(digest)
+    if scene is None:
+        with tempfile.TemporaryDirectory(prefix="pierce_caliper_") as d:
+            path = os.path.join(d, "solid.brep")
+            solid.exportBrep(path)
+            scene = pierce.Scene()
+            pierce.add_model_files(scene, [path])
+        _caliper_cache.clear()
+        _caliper_cache[digest] = scene
+    return scene
 
 
 def _add(obj, kind, name, group, doc, value):

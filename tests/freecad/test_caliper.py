@@ -46,6 +46,21 @@ def body(c):
     c.near(r.thickness, 8.0, 1e-9, "cylinder: diameter through the axis")
     c.near(math.hypot(r.point[0], r.point[1]), 4.0, 1e-9, "cylinder: reading on the exact surface")
 
+    # Clicks on one solid load it once; moved, it is loaded again and read where it now is.
+    solid = box.Shape.Solids[0]
+    first = thickness_map._caliper_scene(thickness_map._pierce(), solid)
+    c.check(thickness_map._caliper_scene(thickness_map._pierce(), solid) is first, "the same solid: its scene reused")
+    box.Placement.Base = box.Placement.Base + FreeCAD.Vector(100, 0, 0)
+    doc.recompute()
+    c.check(thickness_map._caliper_scene(thickness_map._pierce(), box.Shape.Solids[0]) is not first,
+            "the solid moved: loaded again")
+    top = [i for i, f in enumerate(box.Shape.Faces) if abs(f.normalAt(0, 0).z - 1) < 1e-12][0]
+    centre = box.Shape.Faces[top].CenterOfMass
+    r = thickness_map.caliper(box, "Face%d" % (top + 1), centre)
+    c.near(r.thickness, 30.0, 1e-9, "moved box: wall read where it now is")
+    c.near(r.point[0], centre.x, 1e-9, "moved box: reading at the new place")
+    c.check(centre.x > 100, "moved box: its top's centre at x = %g" % centre.x)
+
     c.raises(UserError, lambda: thickness_map.caliper(box, "Edge1", shape.Vertexes[0].Point), "an edge pick",
              contains="face")
     c.raises(UserError, lambda: thickness_map.caliper(box, "Face99", shape.Vertexes[0].Point), "no such face")

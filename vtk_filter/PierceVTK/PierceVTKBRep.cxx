@@ -10,7 +10,6 @@
 
 #include "PierceVTKDistributed.h"
 #include "PierceVTKSurfaces.h"
-#include "pierce/analysis/tie_distance.h"
 #include "pierce/io/cad_registry.h"
 #include "pierce/io/cad_surfaces.h"
 
@@ -19,13 +18,15 @@ namespace pierce_vtk {
 namespace {
 
 // One cell's record, as doubles (gathered under MPI): geometry, triangle, flags (kHasLink,
-// kHasFolded, kFolded), model key (< 2^52, exact in a double), solid, face, (u, v) of 3 corners.
-constexpr std::size_t kFields = 12;
+// kHasFolded, kFolded), model key (< 2^52, exact in a double), solid, triangle in the solid as
+// loaded, face, (u, v) of 3 corners.
+constexpr std::size_t kFields = 13;
 constexpr int kHasLink = 1, kHasFolded = 2, kFolded = 4;
 
 struct CellArrays {
   vtkDataArray* model = nullptr;
   vtkDataArray* solid = nullptr;
+  vtkDataArray* triangle = nullptr;
   vtkDataArray* face = nullptr;
   vtkDataArray* uv = nullptr;
   vtkDataArray* folded = nullptr;
@@ -39,11 +40,12 @@ struct CellArrays {
     };
     model = get("BRepModel", 1);
     solid = get("BRepSolid", 1);
+    triangle = get("BRepTriangle", 1);
     face = get("BRepFace", 1);
     uv = get("BRepUV", 6);
     folded = get("TessellationFolded", 1);
   }
-  bool Linked() const { return model && solid && face && uv; }
+  bool Linked() const { return model && solid && triangle && face && uv; }
   bool Any() const { return Linked() || folded; }
 };
 
@@ -55,13 +57,14 @@ std::vector<double> LocalRecords(const Surfaces& surfaces) {
     if (!arrays.Any()) continue;
     for (vtkIdType c = 0; c < solid.surface->GetNumberOfCells(); ++c) {
       int flags = 0;
-      std::array<double, 9> link{};
+      std::array<double, kFields - 3> link{};
       if (arrays.Linked()) {
         flags |= kHasLink;
         link[0] = arrays.model->GetTuple1(c);
         link[1] = arrays.solid->GetTuple1(c);
-        link[2] = arrays.face->GetTuple1(c);
-        arrays.uv->GetTuple(c, link.data() + 3);
+        link[2] = arrays.triangle->GetTuple1(c);
+        link[3] = arrays.face->GetTuple1(c);
+        arrays.uv->GetTuple(c, link.data() + 4);
       }
       if (arrays.folded) flags |= kHasFolded | (arrays.folded->GetTuple1(c) != 0 ? kFolded : 0);
       records.insert(records.end(), {double(solid.id), double(PrimOfCell(solid, c)), double(flags)});
@@ -76,6 +79,7 @@ struct GeometryLink {
   std::size_t linked = 0, with_folded = 0;
   bool one_model = true;  // every linked cell names the same model and solid
   double model = 0, solid = 0;
+  std::vector<std::int64_t> loaded_triangle;  // per triangle, BRepTriangle
   pierce::CadLink link;
 };
 
@@ -90,21 +94,28 @@ bool UseLink(const Surfaces& surfaces, std::uint32_t g, GeometryLink& gl, std::s
                  "merging it with other data: measured on its mesh";
     return false;
   }
-  const std::vector<std::shared_ptr<const pierce::CadFaces>> faces =
-    pierce::registered_cad_faces(static_cast<std::int64_t>(gl.model));
-  if (faces.empty()) {
+  const std::shared_ptr<const pierce::RegisteredCadModel> model =
+    pierce::registered_cad_model(static_cast<std::int64_t>(gl.model));
+  if (!model) {
     why = name + ": its B-rep is not loaded in this process (the model the Pierce CAD reader read has been released, "
                  "or the data were read in another session): measured on its mesh. Read the file again with the "
                  "Pierce CAD reader to measure on the B-rep";
     return false;
   }
-  if (!(gl.solid >= 0 && gl.solid < double(faces.size()))) {
+  if (!(gl.solid >= 0 && gl.solid < double(model->solids.size())) || !model->solids[std::size_t(gl.solid)].faces) {
     why = name + ": its BRepSolid does not name a solid of its model: measured on its mesh";
     return false;
   }
-  gl.link.faces = faces[std::size_t(gl.solid)];
-  const std::size_t unlinked =
-    pierce::unlinked_triangles(gl.link, geometry.vertices, geometry.triangles, pierce::analysis::tie_distance(surfaces.scene, 1e-6));
+  const pierce::RegisteredCadModel::Solid& loaded = model->solids[std::size_t(gl.solid)];
+  std::size_t unlinked = 0;
+  for (std::size_t t = 0; t < n; ++t) {
+    const std::int64_t k = gl.loaded_triangle[t];
+    const pierce::Tri& tri = geometry.triangles[t];
+    unlinked += !(k >= 0 && std::size_t(k) < loaded.triangle_hash.size() &&
+                  pierce::cad_triangle_hash({geometry.vertices[tri[0]], geometry.vertices[tri[1]], geometry.vertices[tri[2]]},
+                                            gl.link.face[t], gl.link.uv[t]) == loaded.triangle_hash[std::size_t(k)]);
+  }
+  gl.link.faces = loaded.faces;
   if (unlinked > 0) {
     why = name + ": " + std::to_string(unlinked) + " of its " + std::to_string(n) +
           " triangles no longer lie on the B-rep faces they were read from (moved, cut or remeshed after reading?): "
@@ -132,6 +143,7 @@ CadInput FindCadInput(const Surfaces& surfaces, const Distribution& distribution
     links[g].link.face.assign(n, 0);
     links[g].link.uv.assign(n, {});
     links[g].link.flags.assign(n, 0);
+    links[g].loaded_triangle.assign(n, -1);
   }
   for (std::size_t r = 0; r + kFields <= all.size(); r += kFields) {
     const double* x = all.data() + r;
@@ -149,9 +161,10 @@ CadInput FindCadInput(const Surfaces& surfaces, const Distribution& distribution
       gl.model = x[3];
       gl.solid = x[4];
     }
-    gl.one_model = gl.one_model && x[3] == gl.model && x[4] == gl.solid && x[5] >= 0 && x[5] == std::floor(x[5]);
-    gl.link.face[prim] = x[5] >= 0 ? std::uint32_t(x[5]) : 0;
-    std::copy(x + 6, x + 12, gl.link.uv[prim].begin());
+    gl.one_model = gl.one_model && x[3] == gl.model && x[4] == gl.solid;
+    gl.loaded_triangle[prim] = std::int64_t(x[5]);
+    gl.link.face[prim] = x[6] >= 0 && x[6] < 4294967296.0 ? std::uint32_t(x[6]) : 0;
+    std::copy(x + 7, x + 13, gl.link.uv[prim].begin());
   }
 
   bool any_folded = false;

@@ -3,12 +3,13 @@
 //
 // The reader tags each cell with the link of its triangle to the B-rep it was tessellated from:
 // BRepModel (the model's key in this process's registry, pierce/io/cad_registry.h), BRepSolid,
-// BRepFace, BRepUV (the (u, v) of its corners on the face), and TessellationFolded. Cell arrays
+// BRepTriangle, BRepFace, BRepUV (the (u, v) of its corners on the face), and TessellationFolded. Cell arrays
 // survive D3, block and surface extraction; field data would not.
 //
 // A solid is measured on its exact B-rep when every one of its cells carries the link, its model
-// is still registered in this process, and the link still describes its triangles (they were not
-// moved, cut or remeshed after reading: pierce::unlinked_triangles). Otherwise it is measured on
+// is still registered in this process, and every triangle is, bit for bit, the one it names as
+// loaded (corners in order, face and (u, v): pierce::cad_triangle_hash), so nothing was moved,
+// cut or remeshed after reading. Otherwise it is measured on
 // its mesh, and a warning says why. Folded-triangle flags are used either way. Under MPI every
 // rank's cells are gathered first, so each rank knows the links of the whole scene (a ray
 // leaves through another rank's triangles) and a solid is on its B-rep on every rank or on none.

@@ -31,7 +31,8 @@ namespace
 {
 
 // The link of each triangle to its B-rep face, for vtkPierceThickness (PierceVTKBRep.h): the
-// registered model, the solid in it, the face and the (u, v) of the triangle's corners there.
+// registered model, the solid and triangle in it, the face and the (u, v) of the triangle's
+// corners there.
 void AddBRepLink(const pierce::CadSolid& solid, std::int64_t modelKey, int solidId, vtkCellData* cells)
 {
   const auto n = static_cast<vtkIdType>(solid.triangles.size());
@@ -43,6 +44,9 @@ void AddBRepLink(const pierce::CadSolid& solid, std::int64_t modelKey, int solid
   solidIds->SetName("BRepSolid");
   solidIds->SetNumberOfValues(n);
   solidIds->Fill(solidId);
+  auto triangles = vtkSmartPointer<vtkIntArray>::New();
+  triangles->SetName("BRepTriangle");
+  triangles->SetNumberOfValues(n);
   auto faces = vtkSmartPointer<vtkIntArray>::New();
   faces->SetName("BRepFace");
   faces->SetNumberOfValues(n);
@@ -52,11 +56,13 @@ void AddBRepLink(const pierce::CadSolid& solid, std::int64_t modelKey, int solid
   uv->SetNumberOfTuples(n);
   for (vtkIdType t = 0; t < n; ++t)
   {
+    triangles->SetValue(t, static_cast<int>(t));
     faces->SetValue(t, static_cast<int>(solid.link.face[static_cast<std::size_t>(t)]));
     uv->SetTypedTuple(t, solid.link.uv[static_cast<std::size_t>(t)].data());
   }
   cells->AddArray(model);
   cells->AddArray(solidIds);
+  cells->AddArray(triangles);
   cells->AddArray(faces);
   cells->AddArray(uv);
 }

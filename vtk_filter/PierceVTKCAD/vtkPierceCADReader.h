@@ -6,8 +6,8 @@
  * assembly path (e.g. "bracket_assy/bolt"), triangles wound outward, and cell arrays SolidId,
  * TessellationFolded (1 on triangles where the tessellation folds against the B-rep) and the link
  * of each triangle to the B-rep: BRepModel (the model's key in this process's registry,
- * pierce/io/cad_registry.h), BRepSolid, BRepFace and BRepUV (the (u, v) of its three corners on
- * the face). vtkPierceThickness uses the link to measure on the exact B-rep.
+ * pierce/io/cad_registry.h), BRepSolid, BRepTriangle (its index in the solid as loaded),
+ * BRepFace and BRepUV (the (u, v) of its three corners on the face). vtkPierceThickness uses the link to measure on the exact B-rep.
  * Field data: Units ("mm" for STEP and IGES, "model units" for BREP) and LinearDeflection (the
  * tessellation tolerance used). Unreadable files are reported through the error mechanism;
  * parts that were skipped or repaired are reported as warnings. Asked for piece n > 0 (under MPI),

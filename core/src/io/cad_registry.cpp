@@ -13,7 +13,7 @@ namespace {
 
 struct Registered {
   std::int64_t key = 0;
-  std::vector<std::shared_ptr<const CadFaces>> faces;
+  std::shared_ptr<const RegisteredCadModel> model;
 };
 
 struct Registry {
@@ -66,10 +66,35 @@ std::int64_t key_of(const std::string& path, const TessellationOptions& opts) {
 
 }  // namespace
 
+std::uint64_t cad_triangle_hash(const std::array<Vec3d, 3>& corners, std::uint32_t face,
+                                const std::array<double, 6>& uv) {
+  Hash h;
+  for (const Vec3d& c : corners) {
+    h.add(std::bit_cast<std::uint64_t>(c.x));
+    h.add(std::bit_cast<std::uint64_t>(c.y));
+    h.add(std::bit_cast<std::uint64_t>(c.z));
+  }
+  h.add(face);
+  for (const double x : uv) h.add(std::bit_cast<std::uint64_t>(x));
+  return h.value();
+}
+
 std::int64_t register_cad_model(const std::string& path, const TessellationOptions& opts, const CadModel& model) {
   Registered entry;
   entry.key = key_of(path, opts);
-  for (const CadSolid& s : model.solids) entry.faces.push_back(s.link.faces);
+  auto registered = std::make_shared<RegisteredCadModel>();
+  for (const CadSolid& s : model.solids) {
+    RegisteredCadModel::Solid& solid = registered->solids.emplace_back();
+    solid.faces = s.link.faces;
+    if (s.link.empty()) continue;
+    solid.triangle_hash.reserve(s.triangles.size());
+    for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+      const Tri& tri = s.triangles[t];
+      solid.triangle_hash.push_back(cad_triangle_hash({s.vertices[tri[0]], s.vertices[tri[1]], s.vertices[tri[2]]},
+                                                      s.link.face[t], s.link.uv[t]));
+    }
+  }
+  entry.model = std::move(registered);
   Registry& r = registry();
   const std::lock_guard<std::mutex> lock(r.mutex);
   std::erase_if(r.models, [&](const Registered& m) { return m.key == entry.key; });
@@ -78,11 +103,11 @@ std::int64_t register_cad_model(const std::string& path, const TessellationOptio
   return r.models.back().key;
 }
 
-std::vector<std::shared_ptr<const CadFaces>> registered_cad_faces(std::int64_t key) {
+std::shared_ptr<const RegisteredCadModel> registered_cad_model(std::int64_t key) {
   Registry& r = registry();
   const std::lock_guard<std::mutex> lock(r.mutex);
   const auto found = std::find_if(r.models.begin(), r.models.end(), [&](const Registered& m) { return m.key == key; });
-  return found == r.models.end() ? std::vector<std::shared_ptr<const CadFaces>>{} : found->faces;
+  return found == r.models.end() ? nullptr : found->model;
 }
 
 }  // namespace pierce

@@ -2,7 +2,6 @@
 
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <BRepBndLib.hxx>
-#include <BRep_Tool.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepTopAdaptor_FClass2d.hxx>
 #include <Bnd_Box.hxx>
@@ -308,39 +307,6 @@ std::optional<analysis::SurfaceCrossing> CadSurfaces::intersect(std::uint32_t ge
   } catch (const Standard_Failure&) {
     return std::nullopt;
   }
-}
-
-std::size_t unlinked_triangles(const CadLink& link, std::span<const Vec3d> vertices, std::span<const Tri> triangles,
-                               double tolerance) {
-  if (link.empty()) return triangles.size();
-  if (link.face.size() != triangles.size() || link.uv.size() != triangles.size())
-    throw std::invalid_argument("unlinked_triangles: the link has " + std::to_string(link.face.size()) +
-                                " entries for " + std::to_string(triangles.size()) + " triangles");
-  const std::vector<CadFaces::Face>& faces = link.faces->faces;
-  // A node on an edge lies on the edge's 3D curve, which may stray from the surface by the
-  // edge's tolerance (the vertices' bound it): per face, `tolerance` or that, whichever is larger.
-  std::vector<double> slack(faces.size(), -1.0);
-  auto slack_of = [&](std::uint32_t f) {
-    if (slack[f] < 0) slack[f] = std::max(tolerance, 2.0 * BRep_Tool::MaxTolerance(faces[f].face, TopAbs_VERTEX));
-    return slack[f];
-  };
-  std::size_t unlinked = 0;
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
-    const std::uint32_t f = link.face[t];
-    bool linked = f < faces.size() && !faces[f].surface.IsNull();
-    for (int k = 0; k < 3 && linked; ++k) {
-      const std::uint32_t v = triangles[t][std::size_t(k)];
-      if (v >= vertices.size()) {
-        linked = false;
-        break;
-      }
-      const double u = link.uv[t][std::size_t(2 * k)], w = link.uv[t][std::size_t(2 * k + 1)];
-      const Vec3d on_surface = vec(faces[f].surface->Value(u, w).XYZ());
-      linked = length(on_surface - vertices[v]) <= slack_of(f);
-    }
-    unlinked += !linked;
-  }
-  return unlinked;
 }
 
 std::shared_ptr<const CadSurfaces> cad_surfaces(const std::vector<LoadedFile>& files, std::size_t geometries) {

@@ -1,9 +1,7 @@
 #pragma once
 // The exact B-rep surfaces behind CAD geometries (analysis::ExactSurfaces through OpenCASCADE),
 // for thickness maps true to the CAD model (pierce/analysis/thickness.h, ThicknessOptions::exact).
-#include <cstddef>
 #include <memory>
-#include <span>
 #include <vector>
 
 #include "pierce/analysis/exact_surface.h"
@@ -39,14 +37,6 @@ class CadSurfaces final : public analysis::ExactSurfaces {
   std::unique_ptr<Intersectors> intersectors_;
   std::unique_ptr<Classifiers> classifiers_;
 };
-
-// How many of `triangles` (corners in `vertices`) `link` does not describe: triangles whose face
-// index is out of range, or a corner of which is farther than `tolerance` from its face's surface
-// at the corner's (u, v). 0 when the link still holds; more when the triangles were moved, cut
-// or remeshed after loading (then the B-rep must not be asked about them). Throws
-// std::invalid_argument when the link's sizes differ from the triangles'.
-std::size_t unlinked_triangles(const CadLink& link, std::span<const Vec3d> vertices, std::span<const Tri> triangles,
-                               double tolerance);
 
 // The surfaces of every CAD file among `files` (as add_any_model returned them), for a scene of
 // `geometries` geometries; nullptr when none of the files is a CAD file.
