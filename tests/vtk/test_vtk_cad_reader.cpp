@@ -132,6 +132,22 @@ TEST(VtkCadReader, FoldedTrianglesGiveTheTessellationStatus) {
   EXPECT_EQ(stats->GetColumnByName("Valid")->GetVariantValue(0).ToInt(), plate->GetNumberOfCells() - marked);
 }
 
+// vtkPierceThickness per cell on CAD reader output whose B-rep link no longer holds: it warns
+// with `why` and measures the mesh (OnBRep 0).
+vtkSmartPointer<vtkPierceThickness> thickness_on_mesh_with_warning(vtkPolyData* input, const std::string& why) {
+  auto f = vtkSmartPointer<vtkPierceThickness>::New();
+  auto messages = vtkSmartPointer<MessageCollector>::New();
+  messages->Watch(f);
+  f->SetInputData(input);
+  f->SetSampleAt(vtkPierceThickness::CELLS);
+  f->Update();
+  bool warned = false;
+  for (const std::string& w : messages->warnings) warned = warned || w.find(why) != std::string::npos;
+  EXPECT_TRUE(warned) << "no warning containing '" << why << "'";
+  EXPECT_EQ(f->GetStatisticsOutput()->GetColumnByName("OnBRep")->GetVariantValue(0).ToInt(), 0);
+  return f;
+}
+
 // The thin blended plate (tests/occt/step_assembly.h): its bare mesh reads 0.07 at the blends of
 // the 0.3 sheet. Through the reader the filter measures the exact B-rep, bit for bit what core
 // gives on the same file; moved after reading, the link no longer holds: the mesh is measured,
@@ -190,17 +206,8 @@ TEST(VtkCadReader, CadInputIsMeasuredOnTheExactBRep) {
     moved->GetPoint(p, x);
     moved->GetPoints()->SetPoint(p, x[0] + 0.5, x[1], x[2]);
   }
-  auto f = vtkSmartPointer<vtkPierceThickness>::New();
-  auto messages = vtkSmartPointer<MessageCollector>::New();
-  messages->Watch(f);
-  f->SetInputData(moved);
-  f->SetSampleAt(vtkPierceThickness::CELLS);
-  f->Update();
-  bool warned = false;
-  for (const std::string& w : messages->warnings) warned = warned || w.find("no longer lie on the B-rep") != std::string::npos;
-  EXPECT_TRUE(warned);
+  auto f = thickness_on_mesh_with_warning(moved, "no longer lie on the B-rep");
   vtkTable* stats = f->GetStatisticsOutput();
-  EXPECT_EQ(stats->GetColumnByName("OnBRep")->GetVariantValue(0).ToInt(), 0);
   EXPECT_LT(stats->GetColumnByName("Min")->GetVariantValue(0).ToDouble(), 0.1);  // the mesh's chord artefact
 }
 
@@ -219,16 +226,7 @@ TEST(VtkCadReader, ReleasedModelIsMeasuredOnItsMeshWithAWarning) {
     other->SetAngularDeflection(20.0 + double(k));
     other->Update();
   }
-  auto f = vtkSmartPointer<vtkPierceThickness>::New();
-  auto messages = vtkSmartPointer<MessageCollector>::New();
-  messages->Watch(f);
-  f->SetInputData(kept);
-  f->SetSampleAt(vtkPierceThickness::CELLS);
-  f->Update();
-  bool warned = false;
-  for (const std::string& w : messages->warnings) warned = warned || w.find("is not loaded in this process") != std::string::npos;
-  EXPECT_TRUE(warned);
-  EXPECT_EQ(f->GetStatisticsOutput()->GetColumnByName("OnBRep")->GetVariantValue(0).ToInt(), 0);
+  thickness_on_mesh_with_warning(kept, "is not loaded in this process");
 }
 
 TEST(VtkCadReader, MissingAndMalformedFilesAreErrors) {
