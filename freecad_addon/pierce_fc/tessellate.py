@@ -82,6 +82,16 @@ def auto_max_edge(shapes):
     return auto_deflection(shapes) * 40.0
 
 
+def checked_max_edge(max_edge, refs):
+    """max_edge as the meshers take it: None becomes auto_max_edge; a negative or non-finite
+    length is a UserError."""
+    if max_edge is None:
+        return auto_max_edge([r.shape for r in refs])
+    if max_edge < 0 or not math.isfinite(max_edge):
+        raise UserError("The maximum edge length must be a positive length (or 0 for no limit).")
+    return max_edge
+
+
 def build_model(refs, deflection=0.0, angular_deflection_deg=15.0, max_edge=0.0, progress=None):
     """Meshes every SolidRef into one pierce.Scene. deflection 0: auto_deflection. max_edge > 0:
     triangles are split until no edge is longer (None: auto_max_edge; 0: no splitting).
@@ -89,10 +99,7 @@ def build_model(refs, deflection=0.0, angular_deflection_deg=15.0, max_edge=0.0,
     from .locate import import_pierce
     pierce = import_pierce()
     deflection = checked_deflection(deflection, refs)
-    if max_edge is None:
-        max_edge = auto_max_edge([r.shape for r in refs])
-    elif max_edge < 0 or not math.isfinite(max_edge):
-        raise UserError("The maximum edge length must be a positive length (or 0 for no limit).")
+    max_edge = checked_max_edge(max_edge, refs)
     scene = pierce.Scene()
     solids, warnings = [], []
     for k, ref in enumerate(refs):
@@ -115,18 +122,20 @@ def build_model(refs, deflection=0.0, angular_deflection_deg=15.0, max_edge=0.0,
     return Model(scene, solids, deflection, warnings, max_edge)
 
 
-def brep_model(refs, deflection=0.0, angular_deflection_deg=15.0, progress=None):
+def brep_model(refs, deflection=0.0, angular_deflection_deg=15.0, max_edge=0.0, progress=None):
     """Every SolidRef through Pierce's own CAD loader, each solid written as BREP: Pierce's
     tessellation, checked against the B-rep (a solid that folds is meshed again, finer; folds left
     are flagged), with the exact surfaces kept, so that thickness samples start on the exact faces
-    and their exits are refined on them (docs/THICKNESS.md). No edge splitting: the triangles stay
-    linked to their faces. face_of_triangle is None (Pierce keeps that link itself)."""
+    and their exits are refined on them (docs/THICKNESS.md). max_edge > 0: Pierce splits longer
+    triangle edges (None: auto_max_edge; 0: no splitting), the triangles staying linked to their
+    faces. face_of_triangle is None (Pierce keeps that link itself)."""
     import tempfile
     from .locate import import_pierce
     pierce = import_pierce()
     if not getattr(pierce, "HAS_CAD", False):
         raise UserError("This Pierce build has no OpenCASCADE: sampling on the exact B-rep needs it.")
     deflection = checked_deflection(deflection, refs)
+    max_edge = checked_max_edge(max_edge, refs)
     scene = pierce.Scene()
     solids, warnings = [], []
     with tempfile.TemporaryDirectory(prefix="pierce_brep_") as d:
@@ -138,7 +147,7 @@ def brep_model(refs, deflection=0.0, angular_deflection_deg=15.0, progress=None)
             if progress is not None and progress(k + 1, len(refs)) is False:
                 raise pierce.Cancelled("stopped while writing the solids")
         info = pierce.add_model_files(scene, paths, linear_deflection=deflection,
-                                      angular_deflection=angular_deflection_deg)
+                                      angular_deflection=angular_deflection_deg, max_edge=max_edge)
     for ref, f in zip(refs, info):
         first, count = f["geometries"]
         for w in f["warnings"]:
@@ -155,7 +164,7 @@ def brep_model(refs, deflection=0.0, angular_deflection_deg=15.0, progress=None)
                                 "(status tessellation)" % (ref.label, chk["folded"]))
     if not solids:
         raise UserError("None of the selected solids could be meshed.")
-    return Model(scene, solids, deflection, warnings, 0.0, on_brep=True)
+    return Model(scene, solids, deflection, warnings, max_edge, on_brep=True)
 
 
 def mesh_objects(objects, deflection, angular_deflection_deg, max_edge=0.0, progress=None, cancel=None,
@@ -172,7 +181,7 @@ def mesh_objects(objects, deflection, angular_deflection_deg, max_edge=0.0, prog
         raise pierce.Cancelled("cancelled before start")
     start_stage(progress, "Pierce: meshing solids")
     if on_brep:
-        return brep_model(refs, deflection, angular_deflection_deg, progress=progress), warnings
+        return brep_model(refs, deflection, angular_deflection_deg, max_edge, progress=progress), warnings
     return build_model(refs, deflection, angular_deflection_deg, max_edge, progress=progress), warnings
 
 

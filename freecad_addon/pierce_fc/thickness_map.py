@@ -45,9 +45,8 @@ class ThicknessOptions:
         # on the exact faces: no false thin spots from the mesh) or on FreeCAD's mesh, as a mesh.
         # None: on the B-rep when this Pierce build reads CAD (pierce.HAS_CAD).
         self.on_brep = on_brep
-        self.max_edge = max_edge      # mm, FreeCAD's mesh only: split longer triangle edges (samples
-                                      # on big flat faces); None = 4% of the selection's diagonal,
-                                      # 0 = no splitting
+        self.max_edge = max_edge      # mm: split longer triangle edges (samples on big flat faces);
+                                      # None = 4% of the selection's diagonal, 0 = no splitting
         self.threshold = threshold    # thin below this (mm); 0 = no highlight
         self.max_distance = max_distance
         self.color_min = color_min    # legend range; None = the results' min / max

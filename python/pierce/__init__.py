@@ -66,16 +66,18 @@ def trace(scene, origins, directions, *, tmin=0.0, tmax=float("inf"), kernel="qu
     return Hits(records, offsets)
 
 
-def load(*paths, linear_deflection=0.0, angular_deflection=15.0, fold_remesh_rounds=3):
+def load(*paths, linear_deflection=0.0, angular_deflection=15.0, fold_remesh_rounds=3, max_edge=0.0):
     """A new Scene with every solid of the given files, one geometry per solid or part: STL, OBJ, OFF,
     PLY, and STEP/IGES/BREP when pierce.HAS_CAD (tessellated with linear_deflection in model units,
     0 = 0.1% of the diagonal, and angular_deflection in degrees; a solid whose mesh folds against the
-    B-rep meshed again up to fold_remesh_rounds times). Per-file info (units, warnings, per solid the
+    B-rep meshed again up to fold_remesh_rounds times; with max_edge > 0, longer triangle edges split,
+    for more samples on big flat faces). Per-file info (units, warnings, per solid the
     tessellation checked against the B-rep) is in scene.load_info. Thickness maps of CAD solids are
     sampled on the exact B-rep (docs/THICKNESS.md)."""
     scene = Scene()
     info = _core.add_model_files(scene, [str(p) for p in paths], linear_deflection=linear_deflection,
-                                 angular_deflection=angular_deflection, fold_remesh_rounds=fold_remesh_rounds)
+                                 angular_deflection=angular_deflection, fold_remesh_rounds=fold_remesh_rounds,
+                                 max_edge=max_edge)
     scene.load_info = info
     return scene
 

@@ -32,7 +32,7 @@ void bind_io(pyb::module_& m) {
   m.def(
       "add_model_files",
       [](PyScene& s, const std::vector<std::string>& paths, double linear_deflection, double angular_deflection,
-         int fold_remesh_rounds) {
+         int fold_remesh_rounds, double max_edge) {
         if (s.in_use()) throw std::runtime_error("add_model_files: the scene is in use by a running call");
         // Everything is read into a scratch scene first: a bad file leaves the scene as it was.
         Scene scratch;
@@ -45,6 +45,7 @@ void bind_io(pyb::module_& m) {
           t.linear_deflection = linear_deflection;
           t.angular_deflection_deg = angular_deflection;
           t.fold_remesh_rounds = fold_remesh_rounds;
+          t.max_edge_length = max_edge;
           files = add_any_model(scratch, paths, t);
         }
         const auto first = static_cast<std::uint32_t>(s.scene.geometries().size());
@@ -72,7 +73,7 @@ void bind_io(pyb::module_& m) {
           info.append(d);
         }
 #else
-        (void)linear_deflection, (void)angular_deflection, (void)fold_remesh_rounds;
+        (void)linear_deflection, (void)angular_deflection, (void)fold_remesh_rounds, (void)max_edge;
         {
           pyb::gil_scoped_release no_gil;
           add_model_files(scratch, paths);
@@ -94,11 +95,13 @@ void bind_io(pyb::module_& m) {
         return info;
       },
       pyb::arg("scene"), pyb::arg("paths"), pyb::kw_only(), pyb::arg("linear_deflection") = 0.0,
-      pyb::arg("angular_deflection") = 15.0, pyb::arg("fold_remesh_rounds") = 3,
+      pyb::arg("angular_deflection") = 15.0, pyb::arg("fold_remesh_rounds") = 3, pyb::arg("max_edge") = 0.0,
       "Adds every solid of the files (STL/OBJ/OFF/PLY, and STEP/IGES/BREP when built with OpenCASCADE;\n"
       "geometry source = path). CAD files are tessellated with linear_deflection (model units, 0 = 0.1% of\n"
       "the diagonal) and angular_deflection (degrees); a solid whose mesh folds against the B-rep is meshed\n"
-      "again, finer, up to fold_remesh_rounds times (0: folds are only flagged). Returns per-file info (CAD\n"
+      "again, finer, up to fold_remesh_rounds times (0: folds are only flagged); then triangle edges longer\n"
+      "than max_edge (model units; 0: none) are split at their midpoints, for more samples on big flat\n"
+      "faces (the mesh stays closed; the triangles stay linked to their faces). Returns per-file info (CAD\n"
       "builds: path, geometries, units, linear_deflection, warnings, and per solid 'tessellation': the check\n"
       "against the B-rep) or []. Thickness maps of CAD solids are sampled on the exact B-rep.");
 

@@ -77,6 +77,12 @@ def body(c):
     c.near(brep.solids[0].stats.summary.min, 0.3, 1e-6 * 43, "plate on the B-rep: summary minimum")
     c.check(float(mv.min()) < 0.5 * 0.3, "plate on FreeCAD's mesh: the false thin spots this is about (min %.4g)"
             % float(mv.min()))
+    # Split on the B-rep too (the default: 4% of the size), each piece still on its face: more
+    # samples on the big flat faces, the same minimum.
+    whole = thickness_map.run([plate], ThicknessOptions(per="face", max_edge=0, create_objects=False))
+    c.check(len(bv) > 4 * len(whole.solids[0].valid), "plate on the B-rep, split: %d samples, unsplit %d"
+            % (len(bv), len(whole.solids[0].valid)))
+    c.near(float(whole.solids[0].valid.min()), 0.3, 1e-6 * 43, "plate on the B-rep, unsplit: min is the sheet")
     c.check("on the exact B-rep" in brep.summary() and "on FreeCAD's mesh" in mesh.summary(),
             "the summary says where it sampled: " + brep.summary().splitlines()[0])
     run = thickness_map.run([plate], ThicknessOptions(per="vertex"), doc=doc)

@@ -58,6 +58,7 @@
 #include <numbers>
 
 #include "cad_faces.h"
+#include "cad_split.h"
 #include "pierce/error.h"
 
 namespace pierce {
@@ -66,6 +67,7 @@ namespace {
 
 constexpr std::size_t kMaxListedProblems = 10;
 constexpr std::uint32_t kInvalidIndex = ~std::uint32_t(0);
+constexpr std::size_t kMaxSplitTriangles = 4'000'000;  // per solid: edge splitting stops there
 
 enum class CadFormat { step, iges, brep, unknown };
 
@@ -198,6 +200,9 @@ class Collector {
       for (CadFaces::Face& f : faces_of(s)) f.sign = -f.sign;
       warn(name + ": solid was inside out, turned right side out");
     }
+    if (opts_.max_edge_length > 0 && !split_long_edges(s, opts_.max_edge_length, kMaxSplitTriangles))
+      warn(name + ": splitting edges longer than " + std::to_string(opts_.max_edge_length) + " stopped at " +
+           std::to_string(kMaxSplitTriangles) + " triangles; some edges stay longer");
     check.folded = count_flag(s, kTriangleFolded);
     check.slivers = count_flag(s, kTriangleSliver);
     s.link.check = check;
@@ -581,6 +586,8 @@ CadModel load_cad_file(const std::string& path, const TessellationOptions& opts)
     throw InputError("tessellation: angular deflection must be in (0, 180) degrees");
   if (opts.fold_remesh_rounds < 0 || opts.fold_remesh_rounds > 10)
     throw InputError("tessellation: fold remesh rounds must be in 0..10");
+  if (!(opts.max_edge_length >= 0) || !std::isfinite(opts.max_edge_length))
+    throw InputError("tessellation: the maximum edge length must be a positive length (0 for no splitting)");
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) fail(path, "cannot open file (no such file)");
   if (!std::filesystem::is_regular_file(path, ec)) fail(path, "cannot read: not a regular file");

@@ -2,6 +2,7 @@
 
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <BRepBndLib.hxx>
+#include <ElCLib.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepTopAdaptor_FClass2d.hxx>
 #include <Bnd_Box.hxx>
@@ -31,6 +32,14 @@ namespace {
 Vec3d vec(const gp_XYZ& p) { return {p.X(), p.Y(), p.Z()}; }
 
 constexpr int kMaxNewtonSteps = 30;
+
+// (u, v) with a periodic direction's parameter moved into the face's own period window, from its
+// lower bound: Newton may end any number of periods away (7.7e11 on a blend), and the trim
+// classifier steps such a point back one period at a time (minutes).
+void wrap_periodic(const CadFaces::Face& f, double& u, double& v) {
+  if (f.surface->IsUPeriodic() && std::isfinite(u)) u = ElCLib::InPeriod(u, f.umin, f.umin + f.surface->UPeriod());
+  if (f.surface->IsVPeriodic() && std::isfinite(v)) v = ElCLib::InPeriod(v, f.vmin, f.vmin + f.surface->VPeriod());
+}
 
 // Whether (u, v) lies in the face's parameter range, widened by `slack` of its size (Newton may
 // end a hair outside a trimmed face near its boundary; periodic directions are not bounded).
@@ -283,7 +292,10 @@ std::optional<analysis::SurfaceCrossing> CadSurfaces::intersect(std::uint32_t ge
   // Inside the face's trim: a crossing of the untrimmed surface beyond the face's boundary is
   // not where the ray leaves (it left through a neighbour first).
   const BRepTopAdaptor_FClass2d* trim = classifiers_->of(links_, geom, links_[geom].face.at(prim));
-  auto trim_state = [&](double uu, double vv) { return trim ? trim->Perform(gp_Pnt2d(uu, vv)) : TopAbs_IN; };
+  auto trim_state = [&](double uu, double vv) {
+    wrap_periodic(*s.face, uu, vv);
+    return trim ? trim->Perform(gp_Pnt2d(uu, vv)) : TopAbs_IN;
+  };
   if (converged && t > 0 && in_range(*s.face, u, v, 1e-3) &&
       surf.Value(u, v).Distance(p0) <= 2 * s.size + 1e-9 * scale) {
     const TopAbs_State state = trim_state(u, v);

@@ -39,14 +39,12 @@ class ThicknessPanel(PanelBase):
         self.on_brep = check_box("On the exact B-rep", has_cad,
                                  tooltip="Samples start on the exact faces and exits are refined on them; the "
                                          "tessellation is checked against the B-rep (no false thin spots from "
-                                         "the mesh). Off: FreeCAD's mesh, measured as a mesh, with split edges")
+                                         "the mesh). Off: FreeCAD's mesh, measured as a mesh")
         self.split = check_box("Split triangle edges longer than", True,
-                               tooltip="FreeCAD's mesh only: more samples on large flat faces (whose CAD "
-                                       "triangles are few and big)")
+                               tooltip="More samples on large flat faces (whose CAD triangles are few and "
+                                       "big); on the B-rep the split triangles stay on their faces")
         self.max_edge = double_spin(0.0, 0.0, 1e6, special="automatic (4% of size)", step=0.1)
-        self.split.toggled.connect(lambda on: self.max_edge.setEnabled(on and not self.on_brep.isChecked()))
-        self.on_brep.toggled.connect(self._brep_toggled)
-        self._brep_toggled(self.on_brep.isChecked())
+        self.split.toggled.connect(self.max_edge.setEnabled)
         self.threshold = double_spin(0.0, 0.0, 1e6, special="off", step=0.1)
         self.threshold.setToolTip("Samples thinner than this are coloured magenta")
         self.auto_range = check_box("from the results", True)
@@ -68,11 +66,6 @@ class ThicknessPanel(PanelBase):
         f.addRow("  max (blue)", self.range_max)
         f.addRow(self.hide_sources)
         layout.addWidget(box)
-
-    def _brep_toggled(self, on):
-        """Splitting applies to FreeCAD's mesh only (Pierce's B-rep triangles stay linked to their faces)."""
-        self.split.setEnabled(not on)
-        self.max_edge.setEnabled(not on and self.split.isChecked())
 
     def build_results(self, layout):
         self.legend = Legend()

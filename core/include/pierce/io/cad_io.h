@@ -23,6 +23,11 @@ struct TessellationOptions {
   // A solid whose tessellation folds (see TessellationCheck) is meshed again, finer, up to this
   // many times; 0: folds are only flagged.
   int fold_remesh_rounds = 3;
+  // Triangle edges longer than this (model units) are split at their midpoints after the check,
+  // so that large flat faces, which the mesher covers with a few big triangles, get samples
+  // enough for a thickness map (conforming: a closed mesh stays closed; see cad_split.h). 0: no
+  // splitting.
+  double max_edge_length = 0;
 };
 
 // Per-triangle findings of the check against the B-rep (bits of CadLink::flags).
