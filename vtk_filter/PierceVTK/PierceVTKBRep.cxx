@@ -83,15 +83,21 @@ struct GeometryLink {
   pierce::CadLink link;
 };
 
+// A geometry as the warnings name it.
+std::string Label(const pierce::Geometry& geometry) {
+  return geometry.name.empty() ? std::string("the input") : "'" + geometry.name + "'";
+}
+
 // Whether geometry `g`'s link can be used; if not, why (empty when it has no link at all).
 bool UseLink(const Surfaces& surfaces, std::uint32_t g, GeometryLink& gl, std::string& why) {
   const pierce::Geometry& geometry = surfaces.scene.geometry(g);
   const std::size_t n = geometry.triangles.size();
-  const std::string name = geometry.name.empty() ? "the input" : "'" + geometry.name + "'";
+  const std::string name = Label(geometry);
   if (gl.linked == 0) return false;
   if (gl.linked < n || !gl.one_model) {
-    why = name + ": only some of its cells carry one B-rep link (BRepModel, BRepSolid, BRepFace, BRepUV), as after "
-                 "merging it with other data: measured on its mesh";
+    why = name +
+          ": only some of its cells carry one B-rep link (BRepModel, BRepSolid, BRepTriangle, BRepFace, BRepUV), "
+          "as after merging it with other data: measured on its mesh";
     return false;
   }
   const std::shared_ptr<const pierce::RegisteredCadModel> model =
@@ -111,9 +117,11 @@ bool UseLink(const Surfaces& surfaces, std::uint32_t g, GeometryLink& gl, std::s
   for (std::size_t t = 0; t < n; ++t) {
     const std::int64_t k = gl.loaded_triangle[t];
     const pierce::Tri& tri = geometry.triangles[t];
+    const std::array<pierce::Vec3d, 3> corners{geometry.vertices[tri[0]], geometry.vertices[tri[1]],
+                                               geometry.vertices[tri[2]]};
     unlinked += !(k >= 0 && std::size_t(k) < loaded.triangle_hash.size() &&
-                  pierce::cad_triangle_hash({geometry.vertices[tri[0]], geometry.vertices[tri[1]], geometry.vertices[tri[2]]},
-                                            gl.link.face[t], gl.link.uv[t]) == loaded.triangle_hash[std::size_t(k)]);
+                  pierce::cad_triangle_hash(corners, gl.link.face[t], gl.link.uv[t]) ==
+                    loaded.triangle_hash[std::size_t(k)]);
   }
   gl.link.faces = loaded.faces;
   if (unlinked > 0) {
@@ -136,10 +144,8 @@ CadInput FindCadInput(const Surfaces& surfaces, const Distribution& distribution
 
   const std::size_t n_geometries = surfaces.scene.geometries().size();
   std::vector<GeometryLink> links(n_geometries);
-  std::vector<std::vector<std::uint8_t>> folded(n_geometries);
   for (std::size_t g = 0; g < n_geometries; ++g) {
     const std::size_t n = surfaces.scene.geometry(std::uint32_t(g)).triangles.size();
-    folded[g].assign(n, 0);
     links[g].link.face.assign(n, 0);
     links[g].link.uv.assign(n, {});
     links[g].link.flags.assign(n, 0);
@@ -149,11 +155,10 @@ CadInput FindCadInput(const Surfaces& surfaces, const Distribution& distribution
     const double* x = all.data() + r;
     const auto g = std::size_t(x[0]), prim = std::size_t(x[1]);
     const int flags = int(x[2]);
-    if (g >= n_geometries || prim >= folded[g].size()) continue;
+    if (g >= n_geometries || prim >= links[g].link.flags.size()) continue;
     GeometryLink& gl = links[g];
     if (flags & kHasFolded) {
       ++gl.with_folded;
-      folded[g][prim] = (flags & kFolded) ? 1 : 0;
       gl.link.flags[prim] = (flags & kFolded) ? pierce::kTriangleFolded : 0;
     }
     if (!(flags & kHasLink)) continue;
@@ -167,13 +172,15 @@ CadInput FindCadInput(const Surfaces& surfaces, const Distribution& distribution
     std::copy(x + 7, x + 13, gl.link.uv[prim].begin());
   }
 
+  // Fold flags where every cell of a geometry has them (the link's flags hold them either way).
+  std::vector<std::vector<std::uint8_t>> folded(n_geometries);
   bool any_folded = false;
   for (std::size_t g = 0; g < n_geometries; ++g) {
-    if (links[g].with_folded == folded[g].size() && !folded[g].empty()) {
-      any_folded = true;
-    } else {
-      folded[g].clear();
-    }
+    const std::vector<std::uint8_t>& flags = links[g].link.flags;
+    if (flags.empty() || links[g].with_folded != flags.size()) continue;
+    folded[g].reserve(flags.size());
+    for (const std::uint8_t f : flags) folded[g].push_back((f & pierce::kTriangleFolded) ? 1 : 0);
+    any_folded = true;
   }
   if (any_folded) out.folded = std::move(folded);
 
@@ -194,8 +201,7 @@ CadInput FindCadInput(const Surfaces& surfaces, const Distribution& distribution
       final_links[g] = std::move(links[g].link);
       any = true;
     } else if (usable[g]) {
-      const std::string& name = surfaces.scene.geometry(std::uint32_t(g)).name;
-      why[g] = (name.empty() ? std::string("the input") : "'" + name + "'") +
+      why[g] = Label(surfaces.scene.geometry(std::uint32_t(g))) +
                ": its B-rep is not loaded on every rank: measured on its mesh";
     }
     if (!why[g].empty()) out.warnings.push_back(why[g]);
