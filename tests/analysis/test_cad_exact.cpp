@@ -172,9 +172,9 @@ INSTANTIATE_TEST_SUITE_P(Models, CadExactBrepTrue,
 // Edges longer than max_edge_length split (more samples on big flat faces): every edge within
 // the limit, the mesh still closed and consistently oriented, and every sample still B-rep true,
 // on flat and curved faces (new vertices on curved faces lie on the chords and are projected).
-// (Not the plate per vertex: split vertices along its sides at x = 11.25 shoot along lines that
-// pass 0.0025 inside the hole's circle, within the sagitta of its facets, so the mesh shows no
-// crossing there to refine; docs/THICKNESS.md, "What is not refined".)
+// The plate per vertex is the hard one: split vertices along its sides at x = 11.25 shoot along
+// lines that pass 0.0025 inside the hole's circle, within the sagitta of its facets, so the mesh
+// shows no crossing there (CadSurfaces::hidden_crossing finds them).
 TEST(CadExact, SplitEdgesKeepTheMeshClosedAndTheSamplesBRepTrue) {
   TessellationOptions split;
   split.max_edge_length = 4.0;
@@ -191,6 +191,7 @@ TEST(CadExact, SplitEdgesKeepTheMeshClosedAndTheSamplesBRepTrue) {
   EXPECT_TRUE(report.consistently_oriented);
   EXPECT_EQ(l->files.at(0).cad.at(0).face.size(), g.triangles.size());
   expect_b_rep_true(test_models::thin_blended_plate(), "plate_split_face", SampleAt::face, 0.3, split);
+  expect_b_rep_true(test_models::thin_blended_plate(), "plate_split_vertex", SampleAt::vertex, 0.3, split);
   split.max_edge_length = 2.0;
   expect_b_rep_true(test_models::filleted_box(), "box_split_face", SampleAt::face, 1.0, split);
   expect_b_rep_true(test_models::filleted_box(), "box_split_vertex", SampleAt::vertex, 1.0, split);

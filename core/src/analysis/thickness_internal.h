@@ -31,6 +31,7 @@ struct Sample {
 struct CadSample {
   Vec3d point, inward;  // on the exact face, along its exact inward normal
   Vec3d mesh_point;     // the mesh sample `point` was projected from: mesh rays start here
+  std::uint32_t face = kInvalidId;  // exact input: the B-rep face `point` lies on
   bool exact = false;   // exits are refined on the exact faces
   bool closed = false;  // the geometry's mesh is closed: a ray must find an exit
 };

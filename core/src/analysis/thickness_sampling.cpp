@@ -98,6 +98,7 @@ std::pair<Sample, CadSample> cad_sample(const ThicknessOptions& opts, std::uint3
   c.closed = closed;
   if (opts.exact && opts.exact->covers(g)) {
     c.exact = true;
+    c.face = opts.exact->face_of(g, prim);
     if (const auto p = opts.exact->project(g, prim, b1, b2, m)) {
       c.point = p->point;
       c.inward = p->normal * -1.0;

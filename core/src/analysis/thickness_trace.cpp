@@ -187,8 +187,11 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
     // it may leave the exact solid before the mesh says (a graze the chords hide), or only touch
     // the face (a vertex sample on a rim, running down the face below it, grazes that face's
     // chords at once) and leave much later. So may one that meets the face on its boundary (an
-    // edge, where it may run on into a neighbouring face's plane). The whole B-rep decides.
-    if (x->on_boundary || !(std::abs(dot(x->normal, dir)) >= kGrazingCos)) {
+    // edge, where it may run on into a neighbouring face's plane). The whole B-rep decides, as it
+    // does where the ray crosses a face before that the mesh cannot show (a hole's wall, passed a
+    // hair inside its circle, between the chords and the arc).
+    if (x->on_boundary || !(std::abs(dot(x->normal, dir)) >= kGrazingCos) ||
+        opts.exact->hidden_crossing(s.geom, c.point, dir, x->t, c.face, opts.exact->face_of(s.geom, rec.prim))) {
       const std::optional<double> first = opts.exact->exact_exit(s.geom, c.point, dir, tie);
       if (first) t = *first;
     }

@@ -6,6 +6,7 @@
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepTopAdaptor_FClass2d.hxx>
 #include <Bnd_Box.hxx>
+#include <GeomAdaptor_Surface.hxx>
 #include <IntCurvesFace_Intersector.hxx>
 #include <IntCurveSurface_TransitionOnCurve.hxx>
 #include <IntCurvesFace_ShapeIntersector.hxx>
@@ -18,12 +19,18 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <mutex>
 #include <stdexcept>
 #include <vector>
 
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "cad_faces.h"
+#include "pierce/bvh.h"
+#include "pierce/bvh_builder.h"
+#include "pierce/slab.h"
 
 namespace pierce {
 
@@ -102,6 +109,114 @@ struct CadSurfaces::Classifiers {
   }
 };
 
+namespace {
+
+// Where a dipping patch lies: within `half_height` of its chord triangle's plane (unit normal
+// `normal`, offset `height` = dot(corner, normal)) and inside the triangle's edges moved out by
+// a slack (dot(p, edge_normal[k]) >= edge_offset[k], edge normals unit, in the plane, inwards).
+struct PatchPrism {
+  Vec3d normal;
+  double height = 0, half_height = 0;
+  Vec3d edge_normal[3];
+  double edge_offset[3] = {0, 0, 0};
+  std::uint32_t face = 0;
+  BBoxd box;  // of the prism
+};
+
+}  // namespace
+
+// Per geometry, the prisms holding the exact patches (a triangle's (u, v) triangle mapped onto its
+// face) that dip below their triangle into the solid, in a BVH over their boxes built on first
+// use; per thread, the exact line intersectors of the faces of such patches.
+struct CadSurfaces::HiddenFaces {
+  struct OfGeom {
+    std::once_flag built;
+    std::vector<PatchPrism> prisms;
+    // The prisms' boxes, each stored as a triangle spanning it (the scene BVH's builder makes node
+    // boxes the exact unions of their triangles' boxes); Triangle::prim indexes `prisms`.
+    Bvhd boxes;
+    double tolerance = 0;  // for OpenCASCADE's intersector
+    double margin = 0;     // crossings this near the segment's ends are not reported
+  };
+  explicit HiddenFaces(std::size_t geometries) : geoms(std::make_unique<OfGeom[]>(geometries)) {}
+  static void build(const CadLink& l, OfGeom& h);
+  std::unique_ptr<OfGeom[]> geoms;
+  using Key = std::pair<std::uint32_t, std::uint32_t>;  // (geom, face)
+  tbb::enumerable_thread_specific<std::map<Key, std::unique_ptr<IntCurvesFace_Intersector>>> intersectors;
+  tbb::enumerable_thread_specific<std::vector<std::uint32_t>> stacks;
+};
+
+namespace {
+
+// The prism of triangle `uv`'s exact patch on face `f` when the patch dips into the solid below
+// the triangle's plane by more than `noise`, else nullopt. The patch is sampled at its edge
+// midpoints and centre (a smooth patch deviates most from its chord about there); twice the
+// largest deviation from the chord seen, plus `noise`, bounds its height over the chord's plane
+// and how far it reaches past the chord's edges. Where the normal is undefined (a pole) the point
+// counts as dipping.
+std::optional<PatchPrism> inward_patch_prism(const CadFaces::Face& f,
+                                                                   const std::array<double, 6>& uv, double noise) {
+  static constexpr double kBary[4][3] = {{0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5}, {1 / 3.0, 1 / 3.0, 1 / 3.0}};
+  const Geom_Surface& surf = *f.surface;
+  gp_Pnt c[3];
+  for (int k = 0; k < 3; ++k) c[k] = surf.Value(uv[std::size_t(2 * k)], uv[std::size_t(2 * k + 1)]);
+  double dip = 0, deviation = 0;
+  for (const auto& b : kBary) {
+    const double u = b[0] * uv[0] + b[1] * uv[2] + b[2] * uv[4], v = b[0] * uv[1] + b[1] * uv[3] + b[2] * uv[5];
+    gp_Pnt p;
+    gp_Vec su, sv;
+    surf.D1(u, v, p, su, sv);
+    const gp_Vec off(c[0].XYZ() * b[0] + c[1].XYZ() * b[1] + c[2].XYZ() * b[2], p.XYZ());  // chord to surface
+    const gp_Vec n = su.Crossed(sv) * f.sign;
+    const double len = n.Magnitude();
+    deviation = std::max(deviation, off.Magnitude());
+    dip = std::max(dip, len > 0 ? -off.Dot(n) / len : off.Magnitude());
+  }
+  if (!(dip > noise)) return std::nullopt;
+  const Vec3d a[3] = {vec(c[0].XYZ()), vec(c[1].XYZ()), vec(c[2].XYZ())};
+  const Vec3d n = cross(a[1] - a[0], a[2] - a[0]);
+  const double area2 = length(n);
+  PatchPrism prism;
+  const double reach = 2 * deviation + noise;
+  if (area2 > 0) {
+    prism.normal = n * (1.0 / area2);
+    prism.height = dot(a[0], prism.normal);
+    prism.half_height = reach;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3d e = a[(k + 1) % 3] - a[k];
+      const Vec3d m = cross(prism.normal, e) * (1.0 / length(e));  // inwards: the normal is the chord's own
+      prism.edge_normal[k] = m;
+      prism.edge_offset[k] = dot(a[k], m) - reach;
+    }
+  } else {
+    // A chord of zero area (a patch at a pole): no plane to hold it, the box alone does.
+    prism.half_height = std::numeric_limits<double>::infinity();
+  }
+  for (const Vec3d& p : a) prism.box.extend(p);
+  const double w = 2 * reach;  // holds the prism: `reach` off the plane plus `reach` past the edges
+  prism.box.lo = prism.box.lo - Vec3d{w, w, w};
+  prism.box.hi = prism.box.hi + Vec3d{w, w, w};
+  return prism;
+}
+
+// The part [ta, tb] of the segment that lies in the prism; ta > tb when none does.
+void clip_to_prism(const PatchPrism& p, Vec3d org, Vec3d dir, double& ta, double& tb) {
+  // Keeps dot(org + t dir, n) >= lo.
+  auto keep = [&](Vec3d n, double lo) {
+    const double a = dot(org, n) - lo, b = dot(dir, n);
+    if (b > 0) ta = std::max(ta, -a / b);
+    else if (b < 0) tb = std::min(tb, -a / b);
+    else if (!(a >= 0)) tb = -std::numeric_limits<double>::infinity();
+  };
+  if (std::isfinite(p.half_height)) {
+    keep(p.normal, p.height - p.half_height);
+    keep(p.normal * -1.0, -(p.height + p.half_height));
+    for (int k = 0; k < 3; ++k) keep(p.edge_normal[k], p.edge_offset[k]);
+  }
+}
+
+}  // namespace
+
 CadSurfaces::~CadSurfaces() = default;
 
 std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin) const {
@@ -147,7 +262,8 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
 CadSurfaces::CadSurfaces(std::vector<CadLink> links)
     : links_(std::move(links)),
       intersectors_(std::make_unique<Intersectors>()),
-      classifiers_(std::make_unique<Classifiers>()) {
+      classifiers_(std::make_unique<Classifiers>()),
+      hidden_(std::make_unique<HiddenFaces>(links_.size())) {
   folded_.resize(links_.size());
   for (std::size_t g = 0; g < links_.size(); ++g) {
     const CadLink& l = links_[g];
@@ -319,6 +435,117 @@ std::optional<analysis::SurfaceCrossing> CadSurfaces::intersect(std::uint32_t ge
   } catch (const Standard_Failure&) {
     return std::nullopt;
   }
+}
+
+void CadSurfaces::HiddenFaces::build(const CadLink& l, OfGeom& h) {
+  Bnd_Box bounds;
+  BRepBndLib::Add(l.faces->shape, bounds);
+  const double size = bounds.IsVoid() ? 1.0 : std::max(std::sqrt(bounds.SquareExtent()), 1e-300);
+  double max_abs = 0;
+  if (!bounds.IsVoid()) {
+    double x0, y0, z0, x1, y1, z1;
+    bounds.Get(x0, y0, z0, x1, y1, z1);
+    max_abs = std::max({std::abs(x0), std::abs(y0), std::abs(z0), std::abs(x1), std::abs(y1), std::abs(z1)});
+  }
+  h.tolerance = 1e-9 * size;
+  h.margin = 1e-7 * size;
+  const double noise = 1e-9 * (size + max_abs);
+  std::vector<std::uint8_t> planar(l.faces->faces.size());
+  for (std::size_t f = 0; f < planar.size(); ++f)
+    planar[f] = GeomAdaptor_Surface(l.faces->faces[f].surface).GetType() == GeomAbs_Plane;
+  std::vector<std::optional<PatchPrism>> prisms(l.face.size());
+  // Isolated: this runs inside the thickness loop's parallel_for, and a thread waiting here for
+  // its helpers must not take another sample of that loop, which would wait on this once_flag.
+  tbb::this_task_arena::isolate([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, prisms.size(), 1024), [&](const auto& range) {
+      for (std::size_t t = range.begin(); t != range.end(); ++t) {
+        if (planar[l.face[t]]) continue;
+        try {
+          prisms[t] = inward_patch_prism(l.faces->faces[l.face[t]], l.uv[t], noise);
+        } catch (const Standard_Failure&) {
+          prisms[t].reset();  // the surface cannot be evaluated there: nothing to intersect either
+        }
+        if (prisms[t]) prisms[t]->face = l.face[t];
+      }
+    });
+  });
+  std::vector<Vec3d> corners;
+  std::vector<Tri> spans;
+  for (const std::optional<PatchPrism>& p : prisms) {
+    if (!p) continue;
+    const auto first = std::uint32_t(corners.size());
+    corners.push_back(p->box.lo);
+    corners.push_back(p->box.hi);
+    corners.push_back({p->box.lo.x, p->box.hi.y, p->box.lo.z});  // with lo and hi: the box's own box, never flat
+    spans.push_back({first, first + 1, first + 2});
+    h.prisms.push_back(*p);
+  }
+  if (spans.empty()) return;
+  Scene scene;
+  scene.add_mesh(std::move(corners), std::move(spans));
+  h.boxes = build_bvh<double>(scene);
+}
+
+std::optional<double> CadSurfaces::hidden_crossing(std::uint32_t geom, Vec3d org, Vec3d dir, double t_end,
+                                                   std::uint32_t start_face, std::uint32_t end_face) const {
+  if (!covers(geom)) return std::nullopt;
+  HiddenFaces::OfGeom& h = hidden_->geoms[geom];
+  std::call_once(h.built, [&] { HiddenFaces::build(links_[geom], h); });
+  const double tmin = h.margin, tmax = t_end - h.margin;
+  if (h.boxes.empty() || !(tmax > tmin)) return std::nullopt;
+  const TraversalRay<double> ray = TraversalRay<double>::make(Ray{org, dir, tmin, tmax}, h.boxes.scene_max_abs);
+  if (!ray.valid()) return std::nullopt;
+  const Vec3d end = org + dir * t_end;
+  auto holds = [&](const BBoxd& b, Vec3d p) {
+    return p.x >= b.lo.x - h.margin && p.x <= b.hi.x + h.margin && p.y >= b.lo.y - h.margin &&
+           p.y <= b.hi.y + h.margin && p.z >= b.lo.z - h.margin && p.z <= b.hi.z + h.margin;
+  };
+  // The faces whose dipping patches' prisms the segment passes through, each once.
+  std::vector<std::uint32_t>& stack = hidden_->stacks.local();
+  std::uint32_t met[8];
+  std::size_t n_met = 0;
+  bool overflow = false;
+  stack.assign(1, 0);
+  while (!stack.empty()) {
+    const BvhNode<double>& n = h.boxes.nodes[stack.back()];
+    stack.pop_back();
+    if (!box_overlaps(ray, slab(ray, n.box.lo, n.box.hi), tmin, tmax)) continue;
+    if (!n.is_leaf()) {
+      stack.push_back(n.first);
+      stack.push_back(n.first + 1);
+      continue;
+    }
+    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
+      const PatchPrism& p = h.prisms[h.boxes.tris[i].prim];
+      double ta = tmin, tb = tmax;
+      clip_to_prism(p, org, dir, ta, tb);
+      if (!(ta <= tb)) continue;
+      const std::uint32_t face = p.face;
+      if ((face == start_face && holds(p.box, org)) || (face == end_face && holds(p.box, end))) continue;
+      if (std::find(met, met + n_met, face) != met + n_met) continue;
+      if (n_met == std::size(met)) overflow = true;
+      else met[n_met++] = face;
+    }
+  }
+  if (overflow) return tmin;  // more faces than kept: there may be one, and the whole B-rep decides
+  const gp_Lin line(gp_Pnt(org.x, org.y, org.z), gp_Dir(dir.x, dir.y, dir.z));
+  std::optional<double> first;
+  auto& mine = hidden_->intersectors.local();
+  for (std::size_t k = 0; k < n_met; ++k) {
+    try {
+      auto& x = mine[{geom, met[k]}];
+      if (!x) x = std::make_unique<IntCurvesFace_Intersector>(links_[geom].faces->faces[met[k]].face, h.tolerance);
+      x->Perform(line, tmin, tmax);
+      if (!x->IsDone()) continue;
+      for (Standard_Integer i = 1; i <= x->NbPnt(); ++i) {
+        const double w = x->WParameter(i);
+        if (w > tmin && w < tmax && !(first && *first <= w)) first = w;
+      }
+    } catch (const Standard_Failure&) {
+      return tmin;  // undecided: the caller asks the whole B-rep
+    }
+  }
+  return first;
 }
 
 std::shared_ptr<const CadSurfaces> cad_surfaces(const std::vector<LoadedFile>& files, std::size_t geometries) {

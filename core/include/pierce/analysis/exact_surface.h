@@ -53,6 +53,17 @@ class ExactSurfaces {
   // rim down the face below it stays on the boundary, then inside, and leaves where the material
   // ends. Much slower than intersect(): for the rare samples that need it.
   virtual std::optional<double> exact_exit(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin) const = 0;
+  // The smallest t in (0, t_end) where the line org + t dir (dir unit) crosses a face of
+  // geometry `geom` where the face bulges into the solid beyond its triangles (a hole's wall, a
+  // concave blend): such a crossing can lie within the facets' sagitta, so the mesh shows none (a
+  // line through a hole's rim a hair inside its circle passes between the chords and the arc).
+  // nullopt when there is none. Faces that bulge out of the solid, and planes, hide no crossing.
+  // Crossings within 1e-7 of the solid's size of either end are not reported, and near its ends
+  // the line is not checked against the face it starts on (org on start_face, left about along
+  // its normal) and the face it ends on (org + t_end dir on end_face, met at a non-glancing angle):
+  // within a facet's sagitta of there it cannot cross them again. kInvalidId: no such face.
+  virtual std::optional<double> hidden_crossing(std::uint32_t geom, Vec3d org, Vec3d dir, double t_end,
+                                                std::uint32_t start_face, std::uint32_t end_face) const = 0;
 };
 
 }  // namespace pierce::analysis

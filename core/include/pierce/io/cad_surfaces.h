@@ -27,15 +27,19 @@ class CadSurfaces final : public analysis::ExactSurfaces {
   std::optional<analysis::SurfaceCrossing> intersect(std::uint32_t geom, std::uint32_t prim, double b1, double b2,
                                                      Vec3d org, Vec3d dir) const override;
   std::optional<double> exact_exit(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin) const override;
+  std::optional<double> hidden_crossing(std::uint32_t geom, Vec3d org, Vec3d dir, double t_end,
+                                        std::uint32_t start_face, std::uint32_t end_face) const override;
   ~CadSurfaces() override;
 
  private:
   struct Intersectors;  // OpenCASCADE shape intersectors, built on first use
   struct Classifiers;   // per face, whether a (u, v) lies inside its trimming wires
+  struct HiddenFaces;   // the patches that bulge into the solid, for hidden_crossing
   std::vector<CadLink> links_;
   std::vector<std::vector<std::uint8_t>> folded_;
   std::unique_ptr<Intersectors> intersectors_;
   std::unique_ptr<Classifiers> classifiers_;
+  std::unique_ptr<HiddenFaces> hidden_;
 };
 
 // The surfaces of every CAD file among `files` (as add_any_model returned them), for a scene of
