@@ -1,5 +1,6 @@
 #pragma once
 // What machine a bench ran on, printed above its tables so recorded numbers carry their context.
+#include <cstdio>
 #include <fstream>
 #include <string>
 
@@ -21,5 +22,40 @@ inline std::string load_average() {
   if (in >> a >> b >> c) return a + " " + b + " " + c;
   return "unknown";
 }
+
+// The share of the machine's CPU time that the hypervisor gave to other guests (steal) since
+// construction. On a shared VM this is what the load average does not show: a run at 33 % steal
+// reads every row slower, and its ratios noisier, on an otherwise idle guest.
+class StealMeter {
+ public:
+  StealMeter() : start_(read()) {}
+  // Percent, or "unknown" where /proc/stat cannot be read.
+  std::string percent() const {
+    const Times now = read();
+    if (now.total <= start_.total) return "unknown";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.0f %%", 100.0 * double(now.steal - start_.steal) / double(now.total - start_.total));
+    return buf;
+  }
+
+ private:
+  struct Times {
+    unsigned long long steal = 0, total = 0;
+  };
+  // The first line of /proc/stat: cpu user nice system idle iowait irq softirq steal ...
+  static Times read() {
+    std::ifstream in("/proc/stat");
+    std::string cpu;
+    unsigned long long v[8] = {};
+    if (!(in >> cpu) || cpu != "cpu") return {};
+    for (auto& x : v)
+      if (!(in >> x)) return {};
+    Times t;
+    for (auto x : v) t.total += x;
+    t.steal = v[7];
+    return t;
+  }
+  Times start_;
+};
 
 }  // namespace pierce::bench

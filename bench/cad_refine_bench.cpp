@@ -65,6 +65,7 @@ int run(int argc, char** argv) {
                           {"hollow_torus", test_models::hollow_torus},
                           {"thin_blended_plate", test_models::thin_blended_plate},
                           {"lofted_solid", test_models::lofted_solid}};
+  const StealMeter steal;
   std::printf("pierce_bench_cad_refine\nmachine: %s, 1 thread, load %s, best of %d\n", cpu_model().c_str(),
               load_average().c_str(), reps);
   std::printf("%-20s %9s %12s %12s %14s %14s\n", "model", "samples", "mesh [s]", "B-rep [s]", "extra/sample",
@@ -113,6 +114,7 @@ int run(int argc, char** argv) {
   }
   std::error_code ec;
   std::filesystem::remove_all(dir, ec);
+  std::printf("CPU time stolen by the hypervisor during the run: %s\n", steal.percent().c_str());
   return status;
 }
 

@@ -693,6 +693,7 @@ int run(int argc, char** argv) {
   const int threads_used = int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
 
   const std::string load_before = load_average();
+  const StealMeter steal;
   std::cout << "pierce_bench_kernels — Wald et al. 2019 Fig. 3 style table\n"
             << "machine: " << cpu_model() << ", " << hw << " hardware threads, " << threads_used << " used\n"
             << "load average at start: " << load_before << "\n"
@@ -730,8 +731,10 @@ int run(int argc, char** argv) {
   const double total = seconds_since(start);
   const std::string load_after = load_average();
   j["machine"]["load_average_end"] = load_after;
+  j["machine"]["cpu_stolen"] = steal.percent();
   j["total_seconds"] = total;
-  std::cout << "\ntotal " << fmt("%.1f", total) << " s; load average at end: " << load_after << "\n";
+  std::cout << "\ntotal " << fmt("%.1f", total) << " s; load average at end: " << load_after
+            << "; CPU time stolen by the hypervisor during the run: " << steal.percent() << "\n";
 
   if (json_out.is_open()) {
     json_out << j.dump(2) << "\n";

@@ -117,6 +117,7 @@ int run(int argc, char** argv) {
     throw std::runtime_error("cannot write the shell to " + path);
   triangles = 20 * ((std::size_t(1) << (2 * outer)) + (std::size_t(1) << (2 * inner)));
 
+  const StealMeter steal;
   std::cout << "pierce_bench_thickness\nmachine: " << cpu_model() << ", " << threads << " threads used\n"
             << "load average at start: " << load_average() << "\n"
             << "model: gen::hollow_sphere(" << outer << ", " << inner << "), wall 0.05, " << triangles
@@ -151,7 +152,8 @@ int run(int argc, char** argv) {
               "BVH %.0f MB); plain Embree loading the same file and building its scene %.0f MB; ratio %.2f\n",
               pierce_mb, rss_before, rss_loaded, rss_built, double(accel.memory_bytes()) / 1048576.0, embree_mb,
               embree_mb > 0 ? pierce_mb / embree_mb : 0.0);
-  std::cout << "load average at end: " << load_average() << "\n";
+  std::cout << "load average at end: " << load_average() << "; CPU time stolen by the hypervisor: " << steal.percent()
+            << "\n";
   return 0;
 }
 
