@@ -28,7 +28,7 @@
 #include <tbb/task_arena.h>
 
 #include "cad_faces.h"
-#include "pierce/bvh.h"
+#include "pierce/analysis/bvh_query.h"
 #include "pierce/bvh_builder.h"
 #include "pierce/slab.h"
 
@@ -501,32 +501,21 @@ std::optional<double> CadSurfaces::hidden_crossing(std::uint32_t geom, Vec3d org
            p.y <= b.hi.y + h.margin && p.z >= b.lo.z - h.margin && p.z <= b.hi.z + h.margin;
   };
   // The faces whose dipping patches' prisms the segment passes through, each once.
-  std::vector<std::uint32_t>& stack = hidden_->stacks.local();
   std::uint32_t met[8];
   std::size_t n_met = 0;
   bool overflow = false;
-  stack.assign(1, 0);
-  while (!stack.empty()) {
-    const BvhNode<double>& n = h.boxes.nodes[stack.back()];
-    stack.pop_back();
-    if (!box_overlaps(ray, slab(ray, n.box.lo, n.box.hi), tmin, tmax)) continue;
-    if (!n.is_leaf()) {
-      stack.push_back(n.first);
-      stack.push_back(n.first + 1);
-      continue;
-    }
-    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
-      const PatchPrism& p = h.prisms[h.boxes.tris[i].prim];
-      double ta = tmin, tb = tmax;
-      clip_to_prism(p, org, dir, ta, tb);
-      if (!(ta <= tb)) continue;
-      const std::uint32_t face = p.face;
-      if ((face == start_face && holds(p.box, org)) || (face == end_face && holds(p.box, end))) continue;
-      if (std::find(met, met + n_met, face) != met + n_met) continue;
-      if (n_met == std::size(met)) overflow = true;
-      else met[n_met++] = face;
-    }
-  }
+  auto crosses_box = [&](const BBoxd& b) { return box_overlaps(ray, slab(ray, b.lo, b.hi), tmin, tmax); };
+  analysis::for_each_entered(h.boxes, hidden_->stacks.local(), crosses_box, [&](const Triangle<double>& tri) {
+    const PatchPrism& p = h.prisms[tri.prim];
+    double ta = tmin, tb = tmax;
+    clip_to_prism(p, org, dir, ta, tb);
+    if (!(ta <= tb)) return;
+    const std::uint32_t face = p.face;
+    if ((face == start_face && holds(p.box, org)) || (face == end_face && holds(p.box, end))) return;
+    if (std::find(met, met + n_met, face) != met + n_met) return;
+    if (n_met == std::size(met)) overflow = true;
+    else met[n_met++] = face;
+  });
   if (overflow) return tmin;  // more faces than kept: there may be one, and the whole B-rep decides
   const gp_Lin line(gp_Pnt(org.x, org.y, org.z), gp_Dir(dir.x, dir.y, dir.z));
   std::optional<double> first;

@@ -27,32 +27,39 @@ struct ClosestPoint {
 ClosestPoint closest_point(const Bvhd& bvh, Vec3d q, double max_dist2, std::span<const std::uint32_t> exclude,
                            std::vector<std::uint32_t>& stack);
 
-// Calls f(const Triangle<double>&) for every triangle whose box overlaps `box` (closed test).
-template <typename F>
-void for_each_overlapping(const Bvhd& bvh, const BBoxd& box, std::vector<std::uint32_t>& stack, F&& f) {
+// Calls f(const Triangle<double>&) for every triangle in the leaves reached by descending
+// through the nodes whose box passes `enter(const BBoxd&)` (the root's included). `stack` is
+// scratch space reused between calls.
+template <typename Enter, typename F>
+void for_each_entered(const Bvhd& bvh, std::vector<std::uint32_t>& stack, Enter&& enter, F&& f) {
   if (bvh.empty()) return;
-  auto overlaps = [&](const BBoxd& b) {
-    return b.lo.x <= box.hi.x && b.hi.x >= box.lo.x && b.lo.y <= box.hi.y && b.hi.y >= box.lo.y &&
-           b.lo.z <= box.hi.z && b.hi.z >= box.lo.z;
-  };
   stack.clear();
   stack.push_back(0);
   while (!stack.empty()) {
     const BvhNode<double>& n = bvh.nodes[stack.back()];
     stack.pop_back();
-    if (!overlaps(n.box)) continue;
+    if (!enter(n.box)) continue;
     if (!n.is_leaf()) {
       stack.push_back(n.first);
       stack.push_back(n.first + 1);
       continue;
     }
-    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
-      const Triangle<double>& t = bvh.tris[i];
-      BBoxd tb;
-      tb.extend(t.v0), tb.extend(t.v1), tb.extend(t.v2);
-      if (overlaps(tb)) f(t);
-    }
+    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) f(bvh.tris[i]);
   }
+}
+
+// Calls f(const Triangle<double>&) for every triangle whose box overlaps `box` (closed test).
+template <typename F>
+void for_each_overlapping(const Bvhd& bvh, const BBoxd& box, std::vector<std::uint32_t>& stack, F&& f) {
+  auto overlaps = [&](const BBoxd& b) {
+    return b.lo.x <= box.hi.x && b.hi.x >= box.lo.x && b.lo.y <= box.hi.y && b.hi.y >= box.lo.y &&
+           b.lo.z <= box.hi.z && b.hi.z >= box.lo.z;
+  };
+  for_each_entered(bvh, stack, overlaps, [&](const Triangle<double>& t) {
+    BBoxd tb;
+    tb.extend(t.v0), tb.extend(t.v1), tb.extend(t.v2);
+    if (overlaps(tb)) f(t);
+  });
 }
 
 }  // namespace pierce::analysis
