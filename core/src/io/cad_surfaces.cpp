@@ -56,6 +56,23 @@ bool in_range(const CadFaces::Face& f, double u, double v, double slack) {
   return (up || (u >= f.umin - du && u <= f.umax + du)) && (vp || (v >= f.vmin - dv && v <= f.vmax + dv));
 }
 
+// The diagonal of the shape's bounding box and its largest |coordinate| (1 and 0 for an empty
+// shape): the scales of the tolerances here.
+struct ShapeScale {
+  double size = 1, max_abs = 0;
+};
+ShapeScale scale_of(const TopoDS_Shape& shape) {
+  Bnd_Box box;
+  BRepBndLib::Add(shape, box);
+  ShapeScale s;
+  if (box.IsVoid()) return s;
+  s.size = std::max(std::sqrt(box.SquareExtent()), 1e-300);
+  double x0, y0, z0, x1, y1, z1;
+  box.Get(x0, y0, z0, x1, y1, z1);
+  s.max_abs = std::max({std::abs(x0), std::abs(y0), std::abs(z0), std::abs(x1), std::abs(y1), std::abs(z1)});
+  return s;
+}
+
 struct Start {
   const CadFaces::Face* face;
   double u, v;
@@ -226,9 +243,7 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
     auto& x = intersectors_->per_thread.local()[geom];
     if (!x) {
       x = std::make_unique<Intersectors::OfGeom>();
-      Bnd_Box box;
-      BRepBndLib::Add(l.faces->shape, box);
-      x->tolerance = 1e-9 * (box.IsVoid() ? 1.0 : std::max(std::sqrt(box.SquareExtent()), 1e-300));
+      x->tolerance = 1e-9 * scale_of(l.faces->shape).size;
       x->line.Load(l.faces->shape, x->tolerance);
       x->inside.Load(l.faces->shape);
     }
@@ -438,18 +453,10 @@ std::optional<analysis::SurfaceCrossing> CadSurfaces::intersect(std::uint32_t ge
 }
 
 void CadSurfaces::HiddenFaces::build(const CadLink& l, OfGeom& h) {
-  Bnd_Box bounds;
-  BRepBndLib::Add(l.faces->shape, bounds);
-  const double size = bounds.IsVoid() ? 1.0 : std::max(std::sqrt(bounds.SquareExtent()), 1e-300);
-  double max_abs = 0;
-  if (!bounds.IsVoid()) {
-    double x0, y0, z0, x1, y1, z1;
-    bounds.Get(x0, y0, z0, x1, y1, z1);
-    max_abs = std::max({std::abs(x0), std::abs(y0), std::abs(z0), std::abs(x1), std::abs(y1), std::abs(z1)});
-  }
-  h.tolerance = 1e-9 * size;
-  h.margin = 1e-7 * size;
-  const double noise = 1e-9 * (size + max_abs);
+  const ShapeScale scale = scale_of(l.faces->shape);
+  h.tolerance = 1e-9 * scale.size;
+  h.margin = 1e-7 * scale.size;
+  const double noise = 1e-9 * (scale.size + scale.max_abs);
   std::vector<std::uint8_t> planar(l.faces->faces.size());
   for (std::size_t f = 0; f < planar.size(); ++f)
     planar[f] = GeomAdaptor_Surface(l.faces->faces[f].surface).GetType() == GeomAbs_Plane;
