@@ -89,7 +89,7 @@ EmbreeReference::EmbreeReference(const Scene& scene, bool robust) {
   scene_ = rtcNewScene(device_);
   rtcSetSceneFlags(scene_, RTCSceneFlags(RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION |
                                          (robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE)));
-  attach_native_triangles(device_, scene_, scene);  // as Pierce's epsilon kernel sees them
+  attach_native_triangles(device_, scene_, scene, DegenerateTriangles::keep);  // as a plain Embree user would
   rtcCommitScene(scene_);
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (const RTCError err = rtcGetDeviceError(device_); err != RTC_ERROR_NONE)

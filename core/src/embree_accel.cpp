@@ -33,7 +33,7 @@ void occluded_noop(const RTCOccludedFunctionNArguments*) {}
 
 }  // namespace
 
-void attach_native_triangles(RTCDevice device, RTCScene target, const Scene& scene) {
+void attach_native_triangles(RTCDevice device, RTCScene target, const Scene& scene, DegenerateTriangles degenerate) {
   for (const Geometry& geo : scene.geometries()) {
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
@@ -44,8 +44,10 @@ void attach_native_triangles(RTCDevice device, RTCScene target, const Scene& sce
     }
     auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                                3 * sizeof(unsigned), geo.triangles.size()));
+    const bool leave_out = degenerate == DegenerateTriangles::leave_out;
     for (std::size_t i = 0; i < geo.triangles.size(); ++i)
-      for (int k = 0; k < 3; ++k) idx[3 * i + k] = geo.triangles[i][k];
+      for (int k = 0; k < 3; ++k)
+        idx[3 * i + k] = leave_out && geo.degenerate[i] ? unsigned(geo.vertices.size()) : geo.triangles[i][k];
     rtcCommitGeometry(g);
     rtcAttachGeometry(target, g);  // ids 0, 1, ... in attachment order
     rtcReleaseGeometry(g);
@@ -80,7 +82,7 @@ EmbreeAccel::EmbreeAccel(const Scene& scene, const HugePageVector<Triangle<float
   check(device_, "building the exact scene");
 
   native_ = rtcNewScene(device_);
-  attach_native_triangles(device_, native_, scene);
+  attach_native_triangles(device_, native_, scene, DegenerateTriangles::leave_out);
   rtcCommitScene(native_);
   check(device_, "building the native scene");
 }

@@ -212,36 +212,31 @@ void EpsilonKernel::begin(const Ray& ray, std::size_t) {
 }
 
 bool EpsilonKernel::next(Hit& out) {
-  while (!done_) {
-    RTCRayHit rh = native_rayhit(ray_, tnear_);
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    rtcIntersect1(acc_->native(), &ctx, &rh);
-    if (count_) ++counters.traversal_steps;
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
-      done_ = true;
-      return false;
-    }
-    const float t = rh.ray.tfar;
-    if (!std::isfinite(t)) {  // a distance beyond float range (tiny direction): not representable
-      done_ = true;
-      return false;
-    }
-    tnear_ = std::max(float(double(t) + eps_), std::nextafter(t, std::numeric_limits<float>::infinity()));
-    if (acc_->scene().geometry(rh.hit.geomID).degenerate[rh.hit.primID]) continue;
-    out = Hit{};
-    out.t = t;
-    out.geom = rh.hit.geomID;
-    out.prim = rh.hit.primID;
-    out.u = rh.hit.u;
-    out.v = rh.hit.v;
-    // Embree's geometric normal is (v1-v0)x(v2-v0) as Hit::ng, computed in its own rounding: no
-    // reading of the scene's vertices per hit (this is the inexact baseline, measured for speed).
-    out.ng = Vec3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
-    out.enter = dot(Vec3d(out.ng), ray_.dir) < 0.0;
-    return true;
+  if (done_) return false;
+  RTCRayHit rh = native_rayhit(ray_, tnear_);
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  rtcIntersect1(acc_->native(), &ctx, &rh);
+  if (count_) ++counters.traversal_steps;
+  const float t = rh.ray.tfar;
+  // No hit, or a distance beyond float range (tiny direction): not representable. Degenerate
+  // triangles are not in the native scene (DegenerateTriangles::leave_out), so every hit counts.
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID || !std::isfinite(t)) {
+    done_ = true;
+    return false;
   }
-  return false;
+  tnear_ = std::max(float(double(t) + eps_), std::nextafter(t, std::numeric_limits<float>::infinity()));
+  out = Hit{};
+  out.t = t;
+  out.geom = rh.hit.geomID;
+  out.prim = rh.hit.primID;
+  out.u = rh.hit.u;
+  out.v = rh.hit.v;
+  // Embree's geometric normal is (v1-v0)x(v2-v0) as Hit::ng, computed in its own rounding: no
+  // reading of the scene's vertices per hit (this is the inexact baseline, measured for speed).
+  out.ng = Vec3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+  out.enter = dot(Vec3d(out.ng), ray_.dir) < 0.0;
+  return true;
 }
 
 bool embree_first_hit(const EmbreeAccel& acc, const Ray& ray, Hit& out) {

@@ -15,10 +15,16 @@
 
 namespace pierce {
 
+// What attach_native_triangles does with the triangles Pierce finds degenerate (Geometry::degenerate).
+// `leave_out` gives them an index past the vertex buffer, which Embree's build skips as invalid, so
+// no hit on them needs a lookup per hit (the epsilon kernel); `keep` passes them on as a plain
+// Embree user would (the bench's reference code).
+enum class DegenerateTriangles { keep, leave_out };
+
 // Adds `scene`'s triangles to `target` as Embree's own triangle geometries (float vertices), one
-// per Pierce geometry, attached in order so that Embree's geometry ids are Pierce's. Does not
-// commit `target`.
-void attach_native_triangles(RTCDevice device, RTCScene target, const Scene& scene);
+// per Pierce geometry, attached in order so that Embree's geometry and primitive ids are Pierce's.
+// Does not commit `target`.
+void attach_native_triangles(RTCDevice device, RTCScene target, const Scene& scene, DegenerateTriangles degenerate);
 
 class EmbreeAccel {
  public:

@@ -4,8 +4,8 @@
 //  - the container of untraversed nodes: NodeStack (depth first, near child first) or NodeHeap
 //    (front to back by entry distance, Wald et al. §4);
 //  - the active range [lo(), hi()] for box and triangle tests, and cull_bound(): a node entered
-//    beyond it is not traversed but reported to culled() (node culling, Gribble 2016; the
-//    buffered kernel keeps such nodes for a later pass);
+//    beyond it is not traversed but handed to culled() (node culling, Gribble 2016; `buffered`
+//    remembers that it lost something for a later pass, `queue` keeps the node itself);
 //  - suspend(next_tn, pending): stop before the next node, keeping the state (queue, buffered;
 //    only called where the policy sets kSuspends);
 //  - node(ref, tn): Gribble's every-node callback, called for each node traversed;
@@ -105,11 +105,12 @@ class NodeHeap {
 
 template <typename T>
 struct TraversalPolicy {
-  // True if cull_bound() can be below hi(): children that pass the box test are then checked too.
+  // True if cull_bound() can be below hi() and children that pass the box test are to be checked
+  // against it before they are pushed. Without it, a pending node is still checked when popped.
   static constexpr bool kCullsInRange = false;
   // True if suspend() can return true (it then sees the pending nodes).
   static constexpr bool kSuspends = false;
-  void culled(T /*tn*/) {}
+  void culled(NodeEntry<T> /*node*/) {}
   template <class Pending>
   bool suspend(T /*next_tn*/, const Pending& /*pending*/) const {
     return false;
@@ -162,12 +163,12 @@ inline void detail_leaf(const Ops& ops, const TriBlock<T>* blocks, NodeRef ref, 
 }
 
 template <typename T, class Policy>
-inline std::uint32_t detail_cull(Policy& p, std::uint32_t mask, const T* tn) {
+inline std::uint32_t detail_cull(Policy& p, std::uint32_t mask, const T* tn, const NodeRef* child) {
   const T cull = p.cull_bound();
   for (std::uint32_t m = mask; m != 0; m &= m - 1) {
     const int k = __builtin_ctz(m);
     if (tn[k] > cull) {
-      p.culled(tn[k]);
+      p.culled(NodeEntry<T>{tn[k], child[k]});
       mask &= ~(1u << k);
     }
   }
@@ -275,7 +276,7 @@ inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Conta
     }
     have = false;
     if (cur.tn > p.cull_bound()) {
-      p.culled(cur.tn);
+      p.culled(cur);
       continue;
     }
     c.traversal_steps += 1;
@@ -303,7 +304,7 @@ inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Conta
     alignas(32) NodeRef child[kWideArity];
     // Bit k: the child ranked k-th near to far for this octant passed; tn and child in that order.
     std::uint32_t mask = ops.node_hits(node, p.lo(), p.hi(), tn, child);
-    if constexpr (Policy::kCullsInRange) mask = detail_cull(p, mask, tn);
+    if constexpr (Policy::kCullsInRange) mask = detail_cull(p, mask, tn, child);
     if (mask == 0) continue;
     detail_prefetch(nodes, blocks, mask, child);
     if constexpr (decltype(pending)::kOrdered) {

@@ -65,7 +65,12 @@ ClosestPoint closest_point(const Bvhd& bvh, Vec3d q, double max_dist2, std::span
       const Vec3d c = closest_point_on_triangle(q, t.v0, t.v1, t.v2);
       const Vec3d d = c - q;
       const double d2 = dot(d, d);
-      if (d2 < best.dist2 || (d2 == best.dist2 && !best.found())) {
+      // Among equally near triangles the lowest (geom, prim) wins, not the first the walk meets:
+      // their closest points can differ in the last bits, and the answer must not depend on the
+      // BVH's layout (the builder, the thread count).
+      const bool first_of_tie = d2 == best.dist2 && (!best.found() || t.geom < best.geom ||
+                                                     (t.geom == best.geom && t.prim < best.prim));
+      if (d2 < best.dist2 || first_of_tie) {
         best.dist2 = d2;
         best.point = c;
         best.geom = t.geom;

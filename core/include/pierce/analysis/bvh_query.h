@@ -22,8 +22,9 @@ struct ClosestPoint {
 };
 
 // Nearest point to `q` on the BVH's triangles within squared distance `max_dist2`, skipping the
-// primitives listed in `exclude` (ids of Triangle::prim; small, searched linearly). `stack` is
-// scratch space reused between calls.
+// primitives listed in `exclude` (ids of Triangle::prim; small, searched linearly). Of equally
+// near triangles, the one with the lowest (geom, prim) gives the point, whatever the BVH's layout.
+// `stack` is scratch space reused between calls.
 ClosestPoint closest_point(const Bvhd& bvh, Vec3d q, double max_dist2, std::span<const std::uint32_t> exclude,
                            std::vector<std::uint32_t>& stack);
 

@@ -58,7 +58,7 @@ class BufferedKernel : public WideKernel<T, C> {
     // A node entered beyond it would only add hits that fall off the full buffer or lie past the
     // cut: it is needed by a later pass.
     T cull_bound() const { return k.upper(); }
-    void culled(T tn) { k.lose(node_key(tn)); }
+    void culled(NodeEntry<T> node) { k.lose(node_key(node.tn)); }
     template <class Pending>
     bool suspend(T next_tn, const Pending& pending) const {
       if (k.size_ == 0) return false;

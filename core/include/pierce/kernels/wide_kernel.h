@@ -1,7 +1,7 @@
 #pragma once
 // What every kernel on Pierce's wide BVH holds and does the same way: the BVH, the hit order, the
-// SIMD level (chosen once), the prepared ray, the pending nodes (a depth-first stack or, for
-// `queue`, a front-to-back heap), the counter policy, and how a traversal is seeded and run. The
+// SIMD level (chosen once), the prepared ray, the depth-first stack of pending nodes, the counter
+// policy, and how a traversal is seeded and run. The
 // kernels differ only in their traversal policy and in what they keep between next() calls.
 #include <algorithm>
 
@@ -26,16 +26,15 @@ struct ResumeAfter {
   }
 };
 
-// C: the counter policy (counters.h); Pending: NodeStack<T> or NodeHeap<T>.
-template <typename T, class C, class Pending = NodeStack<T>>
+// C: the counter policy (counters.h).
+template <typename T, class C>
 class WideKernel {
  public:
   C counters;
 
  protected:
   WideKernel(const WideBvh<T>& bvh, HitOrder order) : bvh_(&bvh), order_(order), simd_(simd_level()) {
-    // A heap holds the untraversed nodes of every level, not one path's siblings: more room.
-    pending_.reserve((Pending::kOrdered ? 4 : 1) * bvh.stack_capacity());
+    pending_.reserve(bvh.stack_capacity());
   }
 
   void prepare(const Ray& ray) { ray_ = TraversalRay<T>::make(ray, bvh_->scene_max_abs); }
@@ -55,7 +54,7 @@ class WideKernel {
   HitOrder order_;
   SimdLevel simd_;
   TraversalRay<T> ray_;
-  Pending pending_;
+  NodeStack<T> pending_;
 };
 
 }  // namespace pierce
