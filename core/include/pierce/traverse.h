@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <limits>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "pierce/counters.h"
@@ -178,14 +179,27 @@ inline std::uint32_t detail_cull(Policy& p, std::uint32_t mask, const T* tn, con
 // A child that passed the box test is asked for at once, while the nodes in front of it are
 // processed: the lines a node test reads (the whole 256-byte float node), or those a leaf block's
 // SIMD test reads (all but the ids). On a scene beyond the caches this hides much of the latency.
+// The prefetch is an asm statement: GCC 12's dead-code elimination drops __builtin_prefetch here
+// (the calls in the two branches below compiled to nothing, checked in the object code).
+inline void detail_prefetch_line(const char* p) {
+#if defined(__x86_64__) || defined(__i386__)
+  asm volatile("prefetcht0 %0" : : "m"(*p));
+#else
+  __builtin_prefetch(p);
+#endif
+}
+template <std::size_t... Line>
+inline void detail_prefetch_lines(const char* p, std::index_sequence<Line...>) {
+  (detail_prefetch_line(p + 64 * Line), ...);
+}
 template <typename T>
 inline void detail_prefetch(const WideNode<T>* nodes, const TriBlock<T>* blocks, NodeRef ref) {
   if (is_leaf(ref)) {
-    const char* line = reinterpret_cast<const char*>(&blocks[leaf_first_block(ref)]);
-    for (std::size_t off = 0; off < offsetof(TriBlock<T>, geom); off += 64) __builtin_prefetch(line + off);
+    detail_prefetch_lines(reinterpret_cast<const char*>(&blocks[leaf_first_block(ref)]),
+                          std::make_index_sequence<(offsetof(TriBlock<T>, geom) + 63) / 64>{});
   } else {
-    const char* line = reinterpret_cast<const char*>(&nodes[ref]);
-    for (std::size_t off = 0; off < offsetof(WideNode<T>, order); off += 64) __builtin_prefetch(line + off);
+    detail_prefetch_lines(reinterpret_cast<const char*>(&nodes[ref]),
+                          std::make_index_sequence<(offsetof(WideNode<T>, order) + 63) / 64>{});
   }
 }
 template <typename T>

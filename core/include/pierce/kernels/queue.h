@@ -37,6 +37,7 @@ class QueueKernel : public WideKernel<T, C> {
     hits_.clear();
     pos_ = 0;
     depth_ = max_hits == 0 ? 1 : max_hits;
+    bound_ = this->ray_.tmax;
     deferred_.clear();
     seed(*this->bvh_, this->ray_, this->ray_.tmin, this->ray_.tmax, deferred_, this->counters);
   }
@@ -45,6 +46,7 @@ class QueueKernel : public WideKernel<T, C> {
     for (;;) {
       if (pos_ < hits_.size() && (deferred_.empty() || hits_[pos_].t < double(deferred_.next_tn()))) {
         out = hits_[pos_++];
+        update_bound();
         return true;
       }
       if (deferred_.empty()) return false;
@@ -64,10 +66,7 @@ class QueueKernel : public WideKernel<T, C> {
     explicit Descend(QueueKernel& kernel) : k(kernel) {}
     T lo() const { return k.ray_.tmin; }
     T hi() const { return k.ray_.tmax; }
-    T cull_bound() const {
-      const std::size_t bound = k.pos_ + k.depth_ - 1;
-      return bound < k.hits_.size() ? T(k.hits_[bound].t) : k.ray_.tmax;
-    }
+    T cull_bound() const { return k.bound_; }
     void culled(NodeEntry<T> node) { k.deferred_.push(node); }
     void hit(const TriBlock<T>& b, int l, const TriangleHit<T>& h) { k.hold(make_hit(b, l, h)); }
   };
@@ -81,11 +80,16 @@ class QueueKernel : public WideKernel<T, C> {
       --i;
     }
     hits_[i] = h;
+    update_bound();
+  }
+  void update_bound() {
+    bound_ = hits_.size() - pos_ >= depth_ ? T(hits_[pos_ + depth_ - 1].t) : this->ray_.tmax;
   }
 
   std::vector<Hit> hits_;  // held hits in hit order; those before pos_ were returned
   std::size_t pos_ = 0;
   std::size_t depth_ = 1;  // the bound is the depth_-th held hit not yet returned
+  T bound_ = 0;            // its t (tmax while fewer are held)
   NodeHeap<T> deferred_;   // nodes entered beyond the bound, nearest first
 };
 
