@@ -1,8 +1,8 @@
 #pragma once
 // What every kernel on Pierce's wide BVH holds and does the same way: the BVH, the hit order, the
 // SIMD level (chosen once), the prepared ray, the depth-first stack of pending nodes, the counter
-// policy, and how a traversal is seeded and run. The
-// kernels differ only in their traversal policy and in what they keep between next() calls.
+// policy, and how a traversal is seeded and run. The kernels differ only in their traversal policy
+// and in what they keep between next() calls.
 #include <algorithm>
 
 #include "pierce/hit.h"
