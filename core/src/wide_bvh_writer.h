@@ -63,13 +63,15 @@ NodeRef write_leaf(WideBvh<T>& out, std::uint32_t first, std::size_t count, cons
       if (k >= count) continue;
       const Triangle<T> t = tri(k);
       const Vec3<T> p[3] = {t.v0, t.v1, t.v2};
+      const SumOrder so = sum_order(t.v0, t.v1, t.v2);
       for (int c = 0; c < 3; ++c) {
         box.extend(p[c]);
-        for (int a = 0; a < 3; ++a) blk.v[c][a][l] = p[c][a];
+        for (int a = 0; a < 3; ++a) blk.v[c][a][l] = p[so.o[c]][a];
       }
       blk.geom[l] = t.geom;
       blk.prim[l] = t.prim;
-      blk.sum[l] = sum_order(t.v0, t.v1, t.v2);
+      blk.sum[l] = so;
+      if (is_odd(so)) blk.odd |= 1u << l;
       blk.valid |= 1u << l;
     }
   }

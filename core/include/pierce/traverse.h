@@ -137,26 +137,21 @@ inline void detail_leaf(const Ops& ops, const TriBlock<T>* blocks, NodeRef ref, 
   for (std::uint32_t b = first; b < end; ++b) {
     const TriBlock<T>& blk = blocks[b];
     c.prim_tests += std::uint64_t(__builtin_popcount(blk.valid));
-    // The SIMD test's edge functions, handed to the exact tail (the scalar test computes its own).
-    [[maybe_unused]] simd::BlockEdges e;
-    std::uint32_t cand;
-    if constexpr (Ops::kEdges) {
-      cand = ops.tri_candidates(blk, e);
-    } else {
-      cand = ops.tri_candidates(blk);
-    }
-    while (cand != 0) {
-      const int l = __builtin_ctz(cand);
-      cand &= cand - 1;
+    simd::BlockHits<T> finished;
+    const simd::LeafLanes lanes = ops.tri_test(blk, p.lo(), p.hi(), finished);
+    for (std::uint32_t todo = lanes.exact | lanes.hit; todo != 0; todo &= todo - 1) {
+      const int l = __builtin_ctz(todo);
+      const bool odd = (blk.odd >> l & 1) != 0;
       TriangleHit<T> th;
-      bool hit;
-      if constexpr (Ops::kEdges) {
-        hit = intersect_given_edges(r, blk.corner(0, l), blk.corner(1, l), blk.corner(2, l), blk.sum[l], e.U[l],
-                                    e.V[l], e.W[l], p.lo(), p.hi(), th);
-      } else {
-        hit = intersect(r, blk.corner(0, l), blk.corner(1, l), blk.corner(2, l), blk.sum[l], p.lo(), p.hi(), th);
+      if (lanes.hit >> l & 1) {
+        // Finished in SIMD against the range at the block's start, which the hits before it in
+        // this block may have narrowed.
+        th = simd::lane_hit(finished, l, blk.sum[l], odd);
+        if (!(th.t >= p.lo() && th.t <= p.hi())) continue;
+      } else if (!intersect_sorted(r, blk.corner(0, l), blk.corner(1, l), blk.corner(2, l), blk.sum[l], odd, p.lo(),
+                                   p.hi(), th)) {
+        continue;
       }
-      if (!hit) continue;
       c.valid_hits += 1;
       p.hit(blk, l, th);
     }
@@ -391,14 +386,14 @@ inline Hit order_key(const TriBlock<T>& b, int lane, const TriangleHit<T>& th) {
   return h;
 }
 
-// The hit record for a triangle of a leaf block; geometric normal from the stored corners.
+// The hit record for a triangle of a leaf block; geometric normal from the input's corners.
 template <typename T>
 inline Hit make_hit(const TriBlock<T>& b, int lane, const TriangleHit<T>& th) {
   Hit h = order_key(b, lane, th);
   h.u = float(th.u);
   h.v = float(th.v);
-  const Vec3<T> v0 = b.corner(0, lane);
-  h.ng = Vec3f(cross(b.corner(1, lane) - v0, b.corner(2, lane) - v0));
+  const Vec3<T> v0 = b.input_corner(0, lane);
+  h.ng = Vec3f(cross(b.input_corner(1, lane) - v0, b.input_corner(2, lane) - v0));
   return h;
 }
 

@@ -72,16 +72,43 @@ inline SumOrder sum_order(const Vec3<T>& p0, const Vec3<T>& p1, const Vec3<T>& p
   return s;
 }
 
+// True if the corners in SumOrder are an odd permutation of the input's: the sorted triangle then
+// has the opposite winding.
+constexpr bool is_odd(SumOrder so) {
+  return ((so.o[0] > so.o[1]) + (so.o[0] > so.o[2]) + (so.o[1] > so.o[2])) % 2 != 0;
+}
+
+// Where input corners 1 and 2 are among the sorted ones: their barycentric weights are the hit's
+// u and v.
+struct InputWeights {
+  std::uint8_t u, v;
+};
+constexpr InputWeights input_weights(SumOrder so) {
+  InputWeights w{0, 0};
+  for (std::uint8_t k = 0; k < 3; ++k) {
+    if (so.o[k] == 1) w.u = k;
+    if (so.o[k] == 2) w.v = k;
+  }
+  return w;
+}
+
 namespace detail {
 
-// The rest of the test once the edge functions U, V, W and their exact signs su, sv, sw are known
-// (the signs already agree): det, t, the clamp into the triangle's slab interval, the range.
-// za, zb, zc: the corners' kz coordinates relative to the origin. kSignsOfValues: the signs are
-// those of U, V, W themselves (no exact path was taken), so nothing needs fixing.
+// The test is computed on the corners in SumOrder (q0, q1, q2 below). Reordering the corners only
+// permutes the three edge functions and, for an odd permutation, negates them all exactly (each
+// is a difference of two rounded products, and fl(x - y) = -fl(y - x)); det and the numerator of t
+// then change sign together, so t, the barycentric weights and the decision are bit for bit those
+// of any other corner order, and only the facing flips with the permutation's parity.
+
+// The rest of the test once the edge functions U, V, W of the sorted corners and their exact signs
+// su, sv, sw are known (the signs already agree): det, t, the clamp into the triangle's slab
+// interval, the range. za, zb, zc: the sorted corners' kz coordinates relative to the origin.
+// kSignsOfValues: the signs are those of U, V, W themselves (no exact path was taken), so nothing
+// needs fixing. The hit is reported in the input's terms (so, odd).
 template <bool kSignsOfValues, typename T>
-inline bool finish_intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const Vec3<T>& p1, const Vec3<T>& p2,
-                             SumOrder so, T U, T V, T W, int su, int sv, int sw, T za, T zb, T zc, T tlo, T thi,
-                             TriangleHit<T>& out) {
+inline bool finish_intersect(const TraversalRay<T>& r, const Vec3<T>& q0, const Vec3<T>& q1, const Vec3<T>& q2,
+                             SumOrder so, bool odd, T U, T V, T W, int su, int sv, int sw, T za, T zb, T zc, T tlo,
+                             T thi, TriangleHit<T>& out) {
   // Values that disagree with their exact sign (a double's false zero or wrong sign, a value that
   // underflowed, an exact zero decided by the tie rule) would spoil det: replace them by the
   // smallest normal value of the exact sign (normal: immune to flush-to-zero modes), so det is
@@ -92,26 +119,23 @@ inline bool finish_intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const 
   };
   // t keeps the unfixed values: a tie-decided zero must add nothing to t, or a ray starting on a
   // vertex or edge would see that surface at a tiny t of either sign instead of exactly at 0.
-  const T e[3] = {U, V, W};
+  const T eU = U, eV = V, eW = W;
   if constexpr (!kSignsOfValues) fix(U, su), fix(V, sv), fix(W, sw);
 
   const T az = r.sz * za, bz = r.sz * zb, cz = r.sz * zc;
-  // Sum the per-vertex terms in the triangle's SumOrder (see there).
-  const T w[3] = {U, V, W}, z[3] = {az, bz, cz};
-  const std::uint8_t* o = so.o;
-  const T det = (w[o[0]] + w[o[1]]) + w[o[2]];
+  // Summed in the sorted corners' order (see SumOrder).
+  const T det = (U + V) + W;
   if (det == T(0)) return false;  // ray lies in the triangle's plane
   const T inv_det = T(1) / det;
-  const T tnum = (e[o[0]] * z[o[0]] + e[o[1]] * z[o[1]]) + e[o[2]] * z[o[2]];
+  const T tnum = (eU * az + eV * bz) + eW * cz;
   T t = tnum / det;  // one rounding of exact terms where the coordinates are small dyadics
   if (!std::isfinite(t)) {
     // tnum is cubic in the coordinates and overflowed: use the corners' barycentric weights,
     // which lie in [0, 1], so t cannot overflow where the corners' z do not.
-    const T g[3] = {U * inv_det, V * inv_det, W * inv_det};
-    t = (g[o[0]] * z[o[0]] + g[o[1]] * z[o[1]]) + g[o[2]] * z[o[2]];
+    t = ((U * inv_det) * az + (V * inv_det) * bz) + (W * inv_det) * cz;
   }
 
-  const Span<T> box = slab(r, vmin(vmin(p0, p1), p2), vmax(vmax(p0, p1), p2));
+  const Span<T> box = slab(r, vmin(vmin(q0, q1), q2), vmax(vmax(q0, q1), q2));
   const T wf = r.widen(box.tf);
   if (box.tn > wf) return false;  // keeps "triangle hit" implying "every enclosing box hit"
   // Clamp into [tn, max(tn, tf)], not up to the widened wf: a triangle perpendicular to an axis
@@ -123,10 +147,12 @@ inline bool finish_intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const 
   // Not finite: a distance beyond T's range (a tiny direction), never reported.
   if (!(t >= tlo && t <= thi) || !std::isfinite(t)) return false;
 
+  const T w[3] = {U, V, W};
+  const InputWeights in = input_weights(so);
   out.t = t;
-  out.u = V * inv_det;
-  out.v = W * inv_det;
-  out.enter = det > T(0);
+  out.u = w[in.u] * inv_det;
+  out.v = w[in.v] * inv_det;
+  out.enter = (det > T(0)) != odd;
   return true;
 }
 
@@ -134,11 +160,12 @@ inline bool finish_intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const 
 
 // Returns true and fills `out` on a hit with t in [tlo, thi]. The reported t is clamped into
 // the triangle's own slab interval so that every box containing the triangle contains t.
-// `so` must be sum_order(p0, p1, p2).
+// q0, q1, q2: the triangle's corners in SumOrder (q[k] = input corner so.o[k]), as the wide BVH's
+// leaves store them; the hit is reported in the input's terms.
 template <typename T>
-inline bool intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const Vec3<T>& p1, const Vec3<T>& p2,
-                      SumOrder so, T tlo, T thi, TriangleHit<T>& out) {
-  const Vec3<T> a = p0 - r.org, b = p1 - r.org, c = p2 - r.org;
+inline bool intersect_sorted(const TraversalRay<T>& r, const Vec3<T>& q0, const Vec3<T>& q1, const Vec3<T>& q2,
+                             SumOrder so, bool odd, T tlo, T thi, TriangleHit<T>& out) {
+  const Vec3<T> a = q0 - r.org, b = q1 - r.org, c = q2 - r.org;
   const T ax = a[r.kx] - r.sx * a[r.kz], ay = a[r.ky] - r.sy * a[r.kz];
   const T bx = b[r.kx] - r.sx * b[r.kz], by = b[r.ky] - r.sy * b[r.kz];
   const T cx = c[r.kx] - r.sx * c[r.kz], cy = c[r.ky] - r.sy * c[r.kz];
@@ -169,22 +196,16 @@ inline bool intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const Vec3<T>
     sw = detail::perturbed_sign(exact::diff_of_products_sign(bx, ay, by, ax), bx, by, ax, ay);
   }
   if (su == 0 || su != sv || su != sw) return false;
-  return detail::finish_intersect<false>(r, p0, p1, p2, so, U, V, W, su, sv, sw, a[r.kz], b[r.kz], c[r.kz], tlo, thi, out);
+  return detail::finish_intersect<false>(r, q0, q1, q2, so, odd, U, V, W, su, sv, sw, a[r.kz], b[r.kz], c[r.kz], tlo,
+                                         thi, out);
 }
 
-// intersect() for a float triangle whose edge functions U, V, W were computed as there (the SIMD
-// leaf test computes them lane by lane in the same operations): the same answer, bit for bit,
-// without computing them again. Zero or non-finite values take intersect()'s exact path.
-inline bool intersect_given_edges(const TraversalRay<float>& r, const Vec3f& p0, const Vec3f& p1, const Vec3f& p2,
-                                  SumOrder so, float U, float V, float W, float tlo, float thi,
-                                  TriangleHit<float>& out) {
-  if (U == 0.0f || V == 0.0f || W == 0.0f || !std::isfinite(U + V + W))
-    return intersect(r, p0, p1, p2, so, tlo, thi, out);
-  const int su = U > 0.0f ? 1 : -1, sv = V > 0.0f ? 1 : -1, sw = W > 0.0f ? 1 : -1;
-  if (su != sv || su != sw) return false;
-  const float oz = r.org[r.kz];
-  return detail::finish_intersect<true>(r, p0, p1, p2, so, U, V, W, su, sv, sw, p0[r.kz] - oz, p1[r.kz] - oz,
-                                  p2[r.kz] - oz, tlo, thi, out);
+// The test for corners in any order; `so` must be sum_order(p0, p1, p2).
+template <typename T>
+inline bool intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const Vec3<T>& p1, const Vec3<T>& p2,
+                      SumOrder so, T tlo, T thi, TriangleHit<T>& out) {
+  const Vec3<T> p[3] = {p0, p1, p2};
+  return intersect_sorted(r, p[so.o[0]], p[so.o[1]], p[so.o[2]], so, is_odd(so), tlo, thi, out);
 }
 
 template <typename T>

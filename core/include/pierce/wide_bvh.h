@@ -1,8 +1,9 @@
 #pragma once
 // 8-wide BVH in precision T. Child boxes are stored structure-of-arrays so one SIMD slab test
 // covers all eight children; leaves are blocks of up to eight triangles, also structure-of-arrays,
-// with raw vertices (shared vertices stay bit-identical to the input) and each triangle's SumOrder
-// precomputed.
+// with raw vertices (shared vertices stay bit-identical to the input) stored in each triangle's
+// SumOrder, so the fixed summation order needs no per-ray work and a whole block can be finished
+// in SIMD.
 //
 // Every box is the exact union (min and max in T, no rounding) of the triangles below it, so a
 // child's box lies inside its parent's and "triangle hit => every enclosing box hit" holds.
@@ -64,12 +65,19 @@ struct alignas(64) TriBlock {
   // Trivial (no member initialisers), so blocks can be allocated untouched and first written by
   // the thread that fills them; TriBlock<T>{} is all zeros.
   std::uint32_t valid;  // bit l: lane l holds a triangle (padding lanes are masked, never repeated)
-  SumOrder sum[kBlockLanes];
-  alignas(32) T v[3][3][kBlockLanes];  // v[corner][axis][lane], the input corners in input order
+  std::uint32_t odd;    // bit l: sum[l] is an odd permutation (the stored winding is reversed)
+  SumOrder sum[kBlockLanes];  // the stored corner k of lane l is the input's corner sum[l].o[k]
+  alignas(32) T v[3][3][kBlockLanes];  // v[k][axis][lane]: the input corners in SumOrder
   std::uint32_t geom[kBlockLanes];
   std::uint32_t prim[kBlockLanes];
 
-  Vec3<T> corner(int c, int lane) const { return {v[c][0][lane], v[c][1][lane], v[c][2][lane]}; }
+  // Stored corner k (in SumOrder).
+  Vec3<T> corner(int k, int lane) const { return {v[k][0][lane], v[k][1][lane], v[k][2][lane]}; }
+  // The input's corner i.
+  Vec3<T> input_corner(int i, int lane) const {
+    const SumOrder& so = sum[lane];
+    return corner(so.o[0] == i ? 0 : (so.o[1] == i ? 1 : 2), lane);
+  }
 };
 
 template <typename T>

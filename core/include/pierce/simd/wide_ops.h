@@ -5,9 +5,11 @@
 //  - push_hits: the same test, with the children that pass stored onto a depth-first stack far to
 //    near in two SIMD stores (compressed with AVX-512, left-packed by a table with AVX2), so the
 //    loop neither branches per child nor sorts;
-//  - tri_candidates: lanes of a leaf block that the exact triangle test may accept, and (SIMD
-//    levels) every lane's edge functions, which the scalar test then takes instead of recomputing.
-// Both are bit-for-bit the scalar arithmetic of slab.h and triangle.h, lane by lane: the same
+//  - tri_test: the triangle test of a leaf block's eight lanes. A lane whose edge functions are
+//    non-zero and finite has exact signs already and is finished in SIMD (det, t, the clamp into
+//    the triangle's slab interval, the range); only lanes with a zero or non-finite edge function
+//    (or an overflowed t) go to the exact scalar test (triangle.h). The scalar level sends them all.
+// All are bit-for-bit the scalar arithmetic of slab.h and triangle.h, lane by lane: the same
 // operations in the same order (the project builds with -ffp-contract=off, so nothing is fused),
 // min/max with the scalar code's NaN behaviour, ordered compares. So the box test keeps its
 // monotonicity and widened far bound, and a rejected lane is one the scalar test rejects too.
@@ -33,6 +35,25 @@ namespace pierce::simd {
 template <typename T>
 inline int octant(const TraversalRay<T>& r) {
   return (r.dir.x < 0 ? 1 : 0) | (r.dir.y < 0 ? 2 : 0) | (r.dir.z < 0 ? 4 : 0);
+}
+
+// A leaf block's test: lanes for the exact scalar test, and lanes finished in SIMD (a hit within the
+// range the block was tested against; BlockHits holds their t, det and edge functions).
+struct LeafLanes {
+  std::uint32_t exact, hit;
+};
+template <typename T>
+struct BlockHits {
+  alignas(32) T t[kBlockLanes], det[kBlockLanes], e[3][kBlockLanes];
+};
+
+// The hit record of lane l finished in SIMD: finish_intersect's last lines (the signs were those of
+// the values, so nothing was fixed).
+template <typename T>
+inline TriangleHit<T> lane_hit(const BlockHits<T>& h, int l, SumOrder so, bool odd) {
+  const T inv_det = T(1) / h.det[l];
+  const InputWeights in = input_weights(so);
+  return {h.t[l], h.e[in.u][l] * inv_det, h.e[in.v][l] * inv_det, (h.det[l] > T(0)) != odd};
 }
 
 // The scalar path: every level reduces to this on CPUs without AVX2, and the double BVH uses it.
@@ -65,8 +86,8 @@ struct ScalarOps {
       if (mask >> k & 1) top[count++] = {tn[k], child[k]};
     return count;
   }
-  static constexpr bool kEdges = false;  // tri_candidates leaves the edge functions to the scalar test
-  std::uint32_t tri_candidates(const TriBlock<T>& b) const { return b.valid; }
+  // Every lane to the scalar test.
+  LeafLanes tri_test(const TriBlock<T>& b, T /*lo*/, T /*hi*/, BlockHits<T>& /*out*/) const { return {b.valid, 0}; }
 };
 
 constexpr float kWidenUp = 1.0f + 1.0f / float(1 << 20);  // TraversalRay::widen's factors, exact in float
@@ -108,18 +129,16 @@ struct LeftPack4 {
 };
 inline constexpr LeftPack4 kLeftPack4{};
 
-// The sheared edge functions of a leaf block's lanes, as the SIMD test computed them.
-struct BlockEdges {
-  alignas(32) float U[kBlockLanes], V[kBlockLanes], W[kBlockLanes];
-};
 
 // What both SIMD levels precompute from the ray.
 struct SimdRay {
   __m256 org[3], inv[3];
   __m256 pad;
   __m256 okx, oky, okz, sx, sy;  // triangle test: origin in the shear frame's axes, shear constants
+  float sz;
   std::uint32_t near_offset[3], far_offset[3];  // byte offsets of the near and far planes in a WideNode
   bool zero[3];
+  bool neg[3];  // inv < 0: slab() swaps the planes
   bool any_zero;  // a direction component is zero: the slab test's parallel-axis path
   int oct, kx, ky, kz;
 
@@ -128,6 +147,7 @@ struct SimdRay {
       org[a] = _mm256_set1_ps(r.org[a]);
       inv[a] = _mm256_set1_ps(r.inv[a]);
       zero[a] = r.zero[a];
+      neg[a] = r.inv[a] < 0.0f;
       const auto lo = std::uint32_t(offsetof(WideNode<float>, lo) + sizeof(float) * kWideArity * std::size_t(a));
       const auto hi = std::uint32_t(offsetof(WideNode<float>, hi) + sizeof(float) * kWideArity * std::size_t(a));
       // slab(): t0 from lo, t1 from hi, swapped where inv < 0 (arithmetic, not a branch: random
@@ -141,6 +161,7 @@ struct SimdRay {
     kx = r.kx, ky = r.ky, kz = r.kz;
     okx = _mm256_set1_ps(r.org[kx]), oky = _mm256_set1_ps(r.org[ky]), okz = _mm256_set1_ps(r.org[kz]);
     sx = _mm256_set1_ps(r.sx), sy = _mm256_set1_ps(r.sy);
+    sz = r.sz;
     oct = octant(r);
   }
 
@@ -181,24 +202,86 @@ struct SimdRay {
     }
   }
 
-  // The edge functions U, V, W of triangle.h for the eight lanes, in the same operations.
-  __attribute__((target("avx2"))) void edges(const TriBlock<float>& b, __m256& U, __m256& V, __m256& W) const {
+  // The edge functions U, V, W of triangle.h for the eight lanes, in the same operations, and the
+  // corners' kz coordinates relative to the origin.
+  __attribute__((target("avx2"))) void edges(const TriBlock<float>& b, __m256 e[3], __m256 z[3]) const {
     __m256 px[3], py[3];
     for (int c = 0; c < 3; ++c) {
-      const __m256 z = _mm256_sub_ps(_mm256_load_ps(b.v[c][kz]), okz);
-      px[c] = _mm256_sub_ps(_mm256_sub_ps(_mm256_load_ps(b.v[c][kx]), okx), _mm256_mul_ps(sx, z));
-      py[c] = _mm256_sub_ps(_mm256_sub_ps(_mm256_load_ps(b.v[c][ky]), oky), _mm256_mul_ps(sy, z));
+      z[c] = _mm256_sub_ps(_mm256_load_ps(b.v[c][kz]), okz);
+      px[c] = _mm256_sub_ps(_mm256_sub_ps(_mm256_load_ps(b.v[c][kx]), okx), _mm256_mul_ps(sx, z[c]));
+      py[c] = _mm256_sub_ps(_mm256_sub_ps(_mm256_load_ps(b.v[c][ky]), oky), _mm256_mul_ps(sy, z[c]));
     }
     // U = cx*by - cy*bx, V = ax*cy - ay*cx, W = bx*ay - by*ax
-    U = _mm256_sub_ps(_mm256_mul_ps(px[2], py[1]), _mm256_mul_ps(py[2], px[1]));
-    V = _mm256_sub_ps(_mm256_mul_ps(px[0], py[2]), _mm256_mul_ps(py[0], px[2]));
-    W = _mm256_sub_ps(_mm256_mul_ps(px[1], py[0]), _mm256_mul_ps(py[1], px[0]));
+    e[0] = _mm256_sub_ps(_mm256_mul_ps(px[2], py[1]), _mm256_mul_ps(py[2], px[1]));
+    e[1] = _mm256_sub_ps(_mm256_mul_ps(px[0], py[2]), _mm256_mul_ps(py[0], px[2]));
+    e[2] = _mm256_sub_ps(_mm256_mul_ps(px[1], py[0]), _mm256_mul_ps(py[1], px[0]));
   }
 
+  // finish_intersect<true> for every lane, in the same operations (min and max with std::min's
+  // and std::max's operand order, so signed zeros come out alike): all bits set in the lanes that
+  // hit within [lo, hi]. `overflow` gets the lanes whose t overflowed (the scalar test's other
+  // formula).
+  __attribute__((target("avx2"))) __m256 finish(const TriBlock<float>& b, const __m256 e[3], const __m256 z[3],
+                                                float lo, float hi, BlockHits<float>& out, __m256& overflow) const {
+    const __m256 zero_v = _mm256_setzero_ps();
+    const __m256 inf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
+    const __m256 abs_mask = _mm256_set1_ps(-0.0f);
+    const __m256 det = _mm256_add_ps(_mm256_add_ps(e[0], e[1]), e[2]);
+    const __m256 szv = _mm256_set1_ps(sz);
+    const __m256 tnum = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(e[0], _mm256_mul_ps(szv, z[0])),
+                                                    _mm256_mul_ps(e[1], _mm256_mul_ps(szv, z[1]))),
+                                      _mm256_mul_ps(e[2], _mm256_mul_ps(szv, z[2])));
+    const __m256 t = _mm256_div_ps(tnum, det);
+    overflow = _mm256_cmp_ps(_mm256_andnot_ps(abs_mask, t), inf, _CMP_NLT_UQ);  // not finite
+    // slab() of the triangle's box.
+    __m256 tn = _mm256_set1_ps(-std::numeric_limits<float>::infinity()), tf = inf, outside = zero_v;
+    for (int a = 0; a < 3; ++a) {
+      const __m256 v0 = _mm256_load_ps(b.v[0][a]), v1 = _mm256_load_ps(b.v[1][a]), v2 = _mm256_load_ps(b.v[2][a]);
+      const __m256 L = _mm256_min_ps(v2, _mm256_min_ps(v1, v0));
+      const __m256 H = _mm256_max_ps(v2, _mm256_max_ps(v1, v0));
+      if (zero[a]) {
+        outside = _mm256_or_ps(outside, _mm256_or_ps(_mm256_cmp_ps(org[a], L, _CMP_LT_OQ),
+                                                     _mm256_cmp_ps(org[a], H, _CMP_GT_OQ)));
+        continue;
+      }
+      __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(L, org[a]), inv[a]);
+      __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(H, org[a]), inv[a]);
+      if (neg[a]) std::swap(t0, t1);
+      tn = _mm256_max_ps(t0, tn);
+      tf = _mm256_min_ps(t1, tf);
+    }
+    const __m256 up = _mm256_mul_ps(tf, _mm256_set1_ps(kWidenUp));
+    const __m256 down = _mm256_mul_ps(tf, _mm256_set1_ps(kWidenDown));
+    const __m256 wf = _mm256_add_ps(_mm256_blendv_ps(down, up, _mm256_cmp_ps(tf, zero_v, _CMP_GE_OQ)), pad);
+    const __m256 t_hi = _mm256_blendv_ps(tn, tf, _mm256_cmp_ps(tf, tn, _CMP_GT_OQ));
+    __m256 tc = _mm256_blendv_ps(t, t_hi, _mm256_cmp_ps(t, t_hi, _CMP_GT_OQ));
+    tc = _mm256_blendv_ps(tc, tn, _mm256_cmp_ps(t, tn, _CMP_LT_OQ));
+    __m256 ok = _mm256_andnot_ps(outside, _mm256_cmp_ps(det, zero_v, _CMP_NEQ_UQ));
+    ok = _mm256_andnot_ps(_mm256_cmp_ps(tn, wf, _CMP_GT_OQ), ok);
+    ok = _mm256_and_ps(ok, _mm256_and_ps(_mm256_cmp_ps(tc, _mm256_set1_ps(lo), _CMP_GE_OQ),
+                                         _mm256_cmp_ps(tc, _mm256_set1_ps(hi), _CMP_LE_OQ)));
+    ok = _mm256_and_ps(ok, _mm256_cmp_ps(_mm256_andnot_ps(abs_mask, tc), inf, _CMP_LT_OQ));
+    _mm256_store_ps(out.t, tc);
+    _mm256_store_ps(out.det, det);
+    for (int k = 0; k < 3; ++k) _mm256_store_ps(out.e[k], e[k]);
+    return _mm256_andnot_ps(overflow, ok);
+  }
+
+  // The block's test (ScalarOps::tri_test, with lanes finished here). `inside`: lanes with edge
+  // functions non-zero, finite and of one sign; `exact`: lanes with a zero or non-finite one.
+  __attribute__((target("avx2"))) LeafLanes tri_test(const TriBlock<float>& b, std::uint32_t inside,
+                                                     std::uint32_t exact, const __m256 e[3], const __m256 z[3],
+                                                     float lo, float hi, BlockHits<float>& out) const {
+    inside &= b.valid;
+    exact &= b.valid;
+    if (inside == 0) return {exact, 0};
+    __m256 overflow;
+    const auto hit = std::uint32_t(_mm256_movemask_ps(finish(b, e, z, lo, hi, out, overflow)));
+    return {exact | (inside & std::uint32_t(_mm256_movemask_ps(overflow))), inside & hit};
+  }
 };
 
 struct Avx2Ops {
-  static constexpr bool kEdges = true;  // tri_candidates also gives every lane's U, V, W
   SimdRay ray;
   __attribute__((target("avx2"))) explicit Avx2Ops(const TraversalRay<float>& r) : ray(r) {}
 
@@ -253,31 +336,30 @@ struct Avx2Ops {
     return n0 + std::uint32_t(__builtin_popcount(m1));
   }
 
-  __attribute__((target("avx2"))) std::uint32_t tri_candidates(const TriBlock<float>& b, BlockEdges& edges_out) const {
-    __m256 U, V, W;
-    ray.edges(b, U, V, W);
+  __attribute__((target("avx2"))) LeafLanes tri_test(const TriBlock<float>& b, float lo, float hi,
+                                                     BlockHits<float>& out) const {
+    __m256 e[3], z[3];
+    ray.edges(b, e, z);
     const __m256 zero = _mm256_setzero_ps();
-    const __m256 sum = _mm256_add_ps(_mm256_add_ps(U, V), W);
+    const __m256 sum = _mm256_add_ps(_mm256_add_ps(e[0], e[1]), e[2]);
     const __m256 abs_sum = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), sum);
     const __m256 finite = _mm256_cmp_ps(abs_sum, _mm256_set1_ps(std::numeric_limits<float>::infinity()), _CMP_LT_OQ);
-    const __m256 any_zero = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(U, zero, _CMP_EQ_OQ), _mm256_cmp_ps(V, zero, _CMP_EQ_OQ)),
-                                         _mm256_cmp_ps(W, zero, _CMP_EQ_OQ));
-    const __m256 all_pos = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(U, zero, _CMP_GT_OQ), _mm256_cmp_ps(V, zero, _CMP_GT_OQ)),
-                                         _mm256_cmp_ps(W, zero, _CMP_GT_OQ));
-    const __m256 all_neg = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(U, zero, _CMP_LT_OQ), _mm256_cmp_ps(V, zero, _CMP_LT_OQ)),
-                                         _mm256_cmp_ps(W, zero, _CMP_LT_OQ));
-    // Exact path for zero or non-finite edge functions (decided there), inside for equal signs.
-    const std::uint32_t exact_path = std::uint32_t(_mm256_movemask_ps(any_zero)) | (~std::uint32_t(_mm256_movemask_ps(finite)) & 0xFFu);
-    const std::uint32_t inside = std::uint32_t(_mm256_movemask_ps(_mm256_or_ps(all_pos, all_neg)));
-    _mm256_store_ps(edges_out.U, U), _mm256_store_ps(edges_out.V, V), _mm256_store_ps(edges_out.W, W);
-    return (exact_path | inside) & b.valid;
+    const __m256 any_zero = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(e[0], zero, _CMP_EQ_OQ), _mm256_cmp_ps(e[1], zero, _CMP_EQ_OQ)),
+                                         _mm256_cmp_ps(e[2], zero, _CMP_EQ_OQ));
+    const __m256 all_pos = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(e[0], zero, _CMP_GT_OQ), _mm256_cmp_ps(e[1], zero, _CMP_GT_OQ)),
+                                         _mm256_cmp_ps(e[2], zero, _CMP_GT_OQ));
+    const __m256 all_neg = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(e[0], zero, _CMP_LT_OQ), _mm256_cmp_ps(e[1], zero, _CMP_LT_OQ)),
+                                         _mm256_cmp_ps(e[2], zero, _CMP_LT_OQ));
+    // Exact path for zero or non-finite edge functions (decided there), SIMD for equal signs.
+    const std::uint32_t exact = std::uint32_t(_mm256_movemask_ps(any_zero)) | (~std::uint32_t(_mm256_movemask_ps(finite)) & 0xFFu);
+    const std::uint32_t inside = std::uint32_t(_mm256_movemask_ps(_mm256_or_ps(all_pos, all_neg))) & ~exact;
+    return ray.tri_test(b, inside, exact, e, z, lo, hi, out);
   }
 };
 
 #define PIERCE_AVX512_TARGET "avx2,avx512f,avx512vl,avx512bw,avx512dq,bmi,bmi2"
 
 struct Avx512Ops {
-  static constexpr bool kEdges = true;
   SimdRay ray;
   __attribute__((target(PIERCE_AVX512_TARGET))) explicit Avx512Ops(const TraversalRay<float>& r) : ray(r) {}
 
@@ -327,22 +409,23 @@ struct Avx512Ops {
     return n0 + std::uint32_t(__builtin_popcount(m1));
   }
 
-  __attribute__((target(PIERCE_AVX512_TARGET))) std::uint32_t tri_candidates(const TriBlock<float>& b,
-                                                                             BlockEdges& edges_out) const {
-    __m256 U, V, W;
-    ray.edges(b, U, V, W);
+  __attribute__((target(PIERCE_AVX512_TARGET))) LeafLanes tri_test(const TriBlock<float>& b, float lo, float hi,
+                                                                     BlockHits<float>& out) const {
+    __m256 e[3], z[3];
+    ray.edges(b, e, z);
     const __m256 zero = _mm256_setzero_ps();
-    const __m256 sum = _mm256_add_ps(_mm256_add_ps(U, V), W);
+    const __m256 sum = _mm256_add_ps(_mm256_add_ps(e[0], e[1]), e[2]);
     const __mmask8 finite = _mm256_cmp_ps_mask(_mm256_andnot_ps(_mm256_set1_ps(-0.0f), sum),
                                                _mm256_set1_ps(std::numeric_limits<float>::infinity()), _CMP_LT_OQ);
-    const __mmask8 any_zero = _mm256_cmp_ps_mask(U, zero, _CMP_EQ_OQ) | _mm256_cmp_ps_mask(V, zero, _CMP_EQ_OQ) |
-                              _mm256_cmp_ps_mask(W, zero, _CMP_EQ_OQ);
+    const __mmask8 any_zero = _mm256_cmp_ps_mask(e[0], zero, _CMP_EQ_OQ) | _mm256_cmp_ps_mask(e[1], zero, _CMP_EQ_OQ) |
+                              _mm256_cmp_ps_mask(e[2], zero, _CMP_EQ_OQ);
     const __mmask8 all_pos = _mm256_mask_cmp_ps_mask(
-        _mm256_mask_cmp_ps_mask(_mm256_cmp_ps_mask(U, zero, _CMP_GT_OQ), V, zero, _CMP_GT_OQ), W, zero, _CMP_GT_OQ);
+        _mm256_mask_cmp_ps_mask(_mm256_cmp_ps_mask(e[0], zero, _CMP_GT_OQ), e[1], zero, _CMP_GT_OQ), e[2], zero, _CMP_GT_OQ);
     const __mmask8 all_neg = _mm256_mask_cmp_ps_mask(
-        _mm256_mask_cmp_ps_mask(_mm256_cmp_ps_mask(U, zero, _CMP_LT_OQ), V, zero, _CMP_LT_OQ), W, zero, _CMP_LT_OQ);
-    _mm256_store_ps(edges_out.U, U), _mm256_store_ps(edges_out.V, V), _mm256_store_ps(edges_out.W, W);
-    return std::uint32_t(any_zero | __mmask8(~finite) | all_pos | all_neg) & b.valid;
+        _mm256_mask_cmp_ps_mask(_mm256_cmp_ps_mask(e[0], zero, _CMP_LT_OQ), e[1], zero, _CMP_LT_OQ), e[2], zero, _CMP_LT_OQ);
+    const std::uint32_t exact = std::uint32_t(any_zero | __mmask8(~finite));
+    const std::uint32_t inside = std::uint32_t(all_pos | all_neg) & ~exact;
+    return ray.tri_test(b, inside, exact, e, z, lo, hi, out);
   }
 };
 
