@@ -156,14 +156,23 @@ Counters HitIterator::counters() const {
   return std::visit([](const auto& k) { return k.counters.totals(); }, impl_);
 }
 
+void HitIterator::collect(const Ray& ray, std::size_t max_hits, std::vector<Hit>& out) {
+  // One dispatch per ray, with the kernel's begin() and next() inlined into one loop.
+  std::visit(
+      [&](auto& k) {
+        k.begin(ray, max_hits);
+        Hit h;
+        std::size_t n = 0;
+        while ((max_hits == 0 || n < max_hits) && k.next(h)) {
+          out.push_back(h);
+          ++n;
+        }
+      },
+      impl_);
+}
+
 void collect_hits(HitIterator& it, const Ray& ray, std::size_t max_hits, std::vector<Hit>& out) {
-  it.begin(ray, max_hits);
-  Hit h;
-  std::size_t n = 0;
-  while ((max_hits == 0 || n < max_hits) && it.next(h)) {
-    out.push_back(h);
-    ++n;
-  }
+  it.collect(ray, max_hits, out);
 }
 
 bool trace_batch(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays, std::size_t max_hits,

@@ -125,6 +125,8 @@ class HitIterator {
   // kernel.cpp, not in every file that traces rays.
   void begin(const Ray& ray, std::size_t max_hits = 0);
   bool next(Hit& out);
+  // begin(ray, max_hits), then every next() hit (up to max_hits, 0 = all) appended to `out`.
+  void collect(const Ray& ray, std::size_t max_hits, std::vector<Hit>& out);
   KernelKind kind() const { return kind_; }
   // The work done since construction; all zero unless constructed with KernelOptions::count.
   Counters counters() const;

@@ -26,23 +26,28 @@ struct TraversalRay {
     TraversalRay tr;
     tr.org = Vec3<T>(r.org);
     tr.dir = Vec3<T>(r.dir);
+    const T d[3] = {tr.dir.x, tr.dir.y, tr.dir.z};
+    T inv[3];
     for (int a = 0; a < 3; ++a) {
-      tr.zero[a] = tr.dir[a] == T(0);
-      tr.inv[a] = tr.zero[a] ? T(0) : T(1) / tr.dir[a];
+      tr.zero[a] = d[a] == T(0);
+      inv[a] = tr.zero[a] ? T(0) : T(1) / d[a];
     }
-    const T ax = std::abs(tr.dir.x), ay = std::abs(tr.dir.y), az = std::abs(tr.dir.z);
+    tr.inv = {inv[0], inv[1], inv[2]};
+    const T ax = std::abs(d[0]), ay = std::abs(d[1]), az = std::abs(d[2]);
     // kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2), looked up rather than branched on
     // (random directions would mispredict it).
-    constexpr int kLargest[8] = {2, 1, 2, 1, 2, 2, 0, 0};  // index (ax > ay) * 4 + (ax > az) * 2 + (ay > az)
+    static constexpr int kLargest[8] = {2, 1, 2, 1, 2, 2, 0, 0};  // index (ax > ay) * 4 + (ax > az) * 2 + (ay > az)
     tr.kz = kLargest[(ax > ay) * 4 + (ax > az) * 2 + (ay > az)];
     // kx, ky follow kz cyclically, swapped where dir[kz] < 0 to keep the winding, so det's sign is
-    // the facing.
-    const int swap = tr.dir[tr.kz] < T(0);
-    tr.kx = (tr.kz + 1 + swap) % 3;
-    tr.ky = (tr.kz + 2 - swap) % 3;
-    tr.sx = tr.dir[tr.kx] / tr.dir[tr.kz];
-    tr.sy = tr.dir[tr.ky] / tr.dir[tr.kz];
-    tr.sz = T(1) / tr.dir[tr.kz];
+    // the facing: kx = (kz + 1 + swap) % 3, ky = (kz + 2 - swap) % 3, by kz * 2 + swap.
+    static constexpr int kX[6] = {1, 2, 2, 0, 0, 1}, kY[6] = {2, 1, 0, 2, 1, 0};
+    const int pick = tr.kz * 2 + (d[tr.kz] < T(0));
+    tr.kx = kX[pick];
+    tr.ky = kY[pick];
+    const T dz = d[tr.kz];
+    tr.sx = d[tr.kx] / dz;
+    tr.sy = d[tr.ky] / dz;
+    tr.sz = T(1) / dz;
     // Round the segment inwards: hit distances are values of T, so t >= tmin holds for the
     // caller's double tmin exactly when it holds for the next T up (and likewise for tmax).
     tr.tmin = T(r.tmin);

@@ -298,14 +298,14 @@ inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Conta
     const WideNode<T>& node = nodes[cur.ref];
     c.node_tests += std::uint64_t(__builtin_popcount(node.valid()));
     if constexpr (!decltype(pending)::kOrdered && !Policy::kCullsInRange) {
-      // Depth first: every child that passes goes onto the stack far to near in one SIMD store,
-      // and the nearest, on top, is taken at once.
+      // Depth first: every child that passes goes onto the stack far to near in SIMD stores, and
+      // the nearest is descended into at once (taken from the registers, not read back; the
+      // stack keeps the others). Those are asked for now; the nearest's lines are read next anyway.
       NodeEntry<T>* const pushed = pending.top();
-      const std::uint32_t n = ops.push_hits(node, p.lo(), p.hi(), pushed);
+      const std::uint32_t n = ops.push_hits(node, p.lo(), p.hi(), pushed, cur);
       if (n == 0) continue;
-      detail_prefetch(nodes, blocks, pushed, n);
-      pending.grow(n);
-      cur = pending.pop();
+      detail_prefetch(nodes, blocks, pushed, n - 1);
+      pending.grow(n - 1);
       have = true;
       continue;
     }

@@ -76,14 +76,16 @@ struct ScalarOps {
     }
     return mask;
   }
-  // The children that pass, stored at `top` far to near (the nearest last); returns how many.
-  std::uint32_t push_hits(const WideNode<T>& n, T lo, T hi, NodeEntry<T>* top) const {
+  // The children that pass, stored at `top` far to near (the nearest last, also given in `nearest`,
+  // so the loop can descend into it without reading it back); returns how many.
+  std::uint32_t push_hits(const WideNode<T>& n, T lo, T hi, NodeEntry<T>* top, NodeEntry<T>& nearest) const {
     T tn[kWideArity];
     NodeRef child[kWideArity];
     const std::uint32_t mask = node_hits(n, lo, hi, tn, child);
     std::uint32_t count = 0;
     for (int k = kWideArity - 1; k >= 0; --k)
       if (mask >> k & 1) top[count++] = {tn[k], child[k]};
+    if (count > 0) nearest = top[count - 1];
     return count;
   }
   // Every lane to the scalar test.
@@ -112,6 +114,13 @@ __attribute__((target("avx2"))) inline void entry_pairs(__m256 tn, __m256i child
   const __m256i lo = _mm256_unpacklo_epi32(t, child), hi = _mm256_unpackhi_epi32(t, child);
   first = _mm256_permute2x128_si256(lo, hi, 0x20);
   second = _mm256_permute2x128_si256(lo, hi, 0x31);
+}
+
+// Lane k of a node's entry distances and child references, as a NodeEntry.
+__attribute__((target("avx2"))) inline NodeEntry<float> lane_entry(__m256 tn, __m256i child, int k) {
+  const __m256i idx = _mm256_set1_epi32(k);
+  return {_mm_cvtss_f32(_mm256_castps256_ps128(_mm256_permutevar8x32_ps(tn, idx))),
+          NodeRef(_mm_cvtsi128_si32(_mm256_castsi256_si128(_mm256_permutevar8x32_epi32(child, idx))))};
 }
 
 // Left-packing four 64-bit entries by a 4-bit mask with one permute (AVX2 has no compress): the
@@ -316,17 +325,19 @@ struct Avx2Ops {
 
   // ScalarOps::push_hits: two left-packed stores of four entries each.
   __attribute__((target("avx2"))) std::uint32_t push_hits(const WideNode<float>& n, float lo, float hi,
-                                                          NodeEntry<float>* top) const {
+                                                          NodeEntry<float>* top, NodeEntry<float>& nearest) const {
     const std::uint32_t order = n.order[ray.oct];
     __m256 tn;
     const __m256 pass = slot_hits(n, order, lo, hi, tn);
     const __m256i rank = rank_slots_far_to_near(order);
     const auto mask = std::uint32_t(_mm256_movemask_ps(_mm256_permutevar8x32_ps(pass, rank)));
     if (mask == 0) return 0;
+    const __m256 tn_ranked = _mm256_permutevar8x32_ps(tn, rank);
+    const __m256i child_ranked =
+        _mm256_permutevar8x32_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(n.child)), rank);
+    nearest = lane_entry(tn_ranked, child_ranked, 31 - __builtin_clz(mask));
     __m256i first, second;
-    entry_pairs(_mm256_permutevar8x32_ps(tn, rank),
-                _mm256_permutevar8x32_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(n.child)), rank), first,
-                second);
+    entry_pairs(tn_ranked, child_ranked, first, second);
     const std::uint32_t m0 = mask & 15u, m1 = mask >> 4;
     const auto n0 = std::uint32_t(__builtin_popcount(m0));
     auto* out = reinterpret_cast<__m256i*>(top);
@@ -391,17 +402,20 @@ struct Avx512Ops {
 
   // ScalarOps::push_hits: compressed in registers (a compress straight to memory is slow on Zen 4).
   __attribute__((target(PIERCE_AVX512_TARGET))) std::uint32_t push_hits(const WideNode<float>& n, float lo, float hi,
-                                                                        NodeEntry<float>* top) const {
+                                                                        NodeEntry<float>* top,
+                                                                        NodeEntry<float>& nearest) const {
     const std::uint32_t order = n.order[ray.oct];
     __m256 tn;
     const __mmask8 ok = slot_hits(n, order, lo, hi, tn);
     if (ok == 0) return 0;
     const __m256i rank = rank_slots_far_to_near(order);
     const std::uint32_t mask = _mm256_movepi32_mask(_mm256_permutexvar_epi32(rank, _mm256_movm_epi32(ok)));
+    const __m256 tn_ranked = _mm256_permutexvar_ps(rank, tn);
+    const __m256i child_ranked =
+        _mm256_permutexvar_epi32(rank, _mm256_load_si256(reinterpret_cast<const __m256i*>(n.child)));
+    nearest = lane_entry(tn_ranked, child_ranked, 31 - __builtin_clz(mask));
     __m256i first, second;
-    entry_pairs(_mm256_permutexvar_ps(rank, tn),
-                _mm256_permutexvar_epi32(rank, _mm256_load_si256(reinterpret_cast<const __m256i*>(n.child))), first,
-                second);
+    entry_pairs(tn_ranked, child_ranked, first, second);
     const auto m0 = __mmask8(mask & 15u), m1 = __mmask8(mask >> 4);
     const auto n0 = std::uint32_t(__builtin_popcount(m0));
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(top), _mm256_maskz_compress_epi64(m0, first));
