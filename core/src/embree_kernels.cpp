@@ -205,6 +205,7 @@ EpsilonKernel::EpsilonKernel(const EmbreeAccel& acc, double epsilon_rel, bool co
 void EpsilonKernel::begin(const Ray& ray, std::size_t) {
   ray_ = ray;
   tnear_ = float(std::max(0.0, ray.tmin));
+  relaunch_ = false;
   // Rays Embree cannot take (its ray.valid(): finite, |coordinates| < 1.8e18, no NaN range)
   // get no hits; so do empty ranges.
   done_ = !embree_representable(Vec3d(Vec3f(ray.org))) || !embree_representable(Vec3d(Vec3f(ray.dir))) ||
@@ -213,6 +214,10 @@ void EpsilonKernel::begin(const Ray& ray, std::size_t) {
 
 bool EpsilonKernel::next(Hit& out) {
   if (done_) return false;
+  // The relaunch point after the last hit, worked out only when a next hit is asked for (a caller
+  // that wants one hit never pays for it).
+  if (relaunch_)
+    tnear_ = std::max(float(double(last_t_) + eps_), std::nextafter(last_t_, std::numeric_limits<float>::infinity()));
   RTCRayHit rh = native_rayhit(ray_, tnear_);
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
@@ -225,7 +230,8 @@ bool EpsilonKernel::next(Hit& out) {
     done_ = true;
     return false;
   }
-  tnear_ = std::max(float(double(t) + eps_), std::nextafter(t, std::numeric_limits<float>::infinity()));
+  last_t_ = t;
+  relaunch_ = true;
   out = Hit{};
   out.t = t;
   out.geom = rh.hit.geomID;

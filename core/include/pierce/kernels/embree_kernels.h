@@ -80,6 +80,8 @@ class EpsilonKernel {
   bool count_;
   Ray ray_;
   float tnear_ = 0;
+  float last_t_ = 0;       // the last hit's t
+  bool relaunch_ = false;  // a hit was returned: the next call starts beyond last_t_
   bool done_ = true;
 };
 
