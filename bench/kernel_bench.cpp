@@ -15,6 +15,7 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <limits>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -451,14 +452,28 @@ void print_scene(const SceneResult& r, const Settings& st) {
   // What exactness costs: time ratios (>1 = slower than the plain Embree row), same rays, same run.
   std::cout << "\ncost of exactness (time of the exact kernel / time of plain Embree code):\n";
   auto ratio = [&](const Cell* a, const Cell* b) { return a && b ? fmt("%.2f", a->median_seconds / b->median_seconds) : std::string("-"); };
+  // The spread of the same ratio taken repetition by repetition (the two cells of one repetition
+  // ran moments apart): on a shared machine this shows how far one run's median can be trusted.
+  auto spread = [&](const Cell* a, const Cell* b) {
+    if (!a || !b || a->seconds.size() < 2 || a->seconds.size() != b->seconds.size()) return std::string();
+    double lo = std::numeric_limits<double>::infinity(), hi = 0;
+    for (std::size_t k = 0; k < a->seconds.size(); ++k) {
+      const double q = a->seconds[k] / b->seconds[k];
+      lo = std::min(lo, q), hi = std::max(hi, q);
+    }
+    return " [" + fmt("%.2f", lo) + "-" + fmt("%.2f", hi) + " by repetition]";
+  };
   for (std::size_t c = 0; c < st.columns.size(); ++c) {
     const Row* best = best_exact_own(r, c);
     if (!best) continue;
     const std::size_t n = st.columns[c];
     std::cout << "  " << pad(column_title(n), 8) << "best exact own-BVH kernel " << pad(best->kernel, 9);
-    if (n == 1) std::cout << ratio(&best->cells[c], find_cell(r, "embree first hit", 1)) << "x first hit, "
+    const Cell* first = find_cell(r, "embree first hit", 1);
+    const Cell* filter = find_cell(r, "embree all-hits", n);
+    if (n == 1) std::cout << ratio(&best->cells[c], first) << "x first hit" << spread(&best->cells[c], first) << ", "
                           << ratio(&best->cells[c], find_cell(r, "embree robust 1st", 1)) << "x robust first hit";
-    std::cout << (n == 1 ? ", " : "") << ratio(&best->cells[c], find_cell(r, "embree all-hits", n)) << "x all-hits filter, "
+    std::cout << (n == 1 ? ", " : "") << ratio(&best->cells[c], filter) << "x all-hits filter"
+              << (n == 0 ? spread(&best->cells[c], filter) : std::string()) << ", "
               << ratio(&best->cells[c], find_cell(r, "embree lex-restart", n)) << "x lex-restart";
     if (n == 5 || n == 15) {
       const Cell* q = find_cell(r, "queue", n);
@@ -470,7 +485,8 @@ void print_scene(const SceneResult& r, const Settings& st) {
     std::cout << "\n";
   }
   if (const Cell* e = find_cell(r, "epsilon", 1))
-    std::cout << "  epsilon (1 hit) " << ratio(e, find_cell(r, "embree first hit", 1)) << "x plain first hit\n";
+    std::cout << "  epsilon (1 hit) " << ratio(e, find_cell(r, "embree first hit", 1)) << "x plain first hit"
+              << spread(e, find_cell(r, "embree first hit", 1)) << "\n";
   for (const std::string& p : r.problems) std::cout << "WARNING: " << p << "\n";
   std::cout.flush();
 }
