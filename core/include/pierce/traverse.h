@@ -300,7 +300,7 @@ inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Conta
     if constexpr (!decltype(pending)::kOrdered && !Policy::kCullsInRange) {
       // Depth first: every child that passes goes onto the stack far to near in SIMD stores, and
       // the nearest is descended into at once (taken from the registers, not read back; the
-      // stack keeps the others). Those are asked for now; the nearest's lines are read next anyway.
+      // stack keeps the others). The others are prefetched; the nearest is read at once anyway.
       NodeEntry<T>* const pushed = pending.top();
       const std::uint32_t n = ops.push_hits(node, p.lo(), p.hi(), pushed, cur);
       if (n == 0) continue;
