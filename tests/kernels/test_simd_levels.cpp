@@ -15,6 +15,14 @@ struct LevelGuard {
   ~LevelGuard() { set_simd_level(saved); }
 };
 
+// The levels this machine has, scalar first.
+std::vector<SimdLevel> levels_here() {
+  std::vector<SimdLevel> levels{SimdLevel::scalar};
+  if (int(best_simd_level()) >= int(SimdLevel::avx2)) levels.push_back(SimdLevel::avx2);
+  if (best_simd_level() == SimdLevel::avx512) levels.push_back(SimdLevel::avx512);
+  return levels;
+}
+
 TEST(SimdLevels, NamesParseAndClamp) {
   LevelGuard guard;
   for (SimdLevel l : {SimdLevel::scalar, SimdLevel::avx2, SimdLevel::avx512}) {
@@ -44,9 +52,7 @@ TEST(SimdLevels, IdenticalHitsAtEveryLevel) {
     rays.push_back({{-1.0, x, 0.1 * (i % 7)}, {1, 0, 0}});
   }
 
-  std::vector<SimdLevel> levels{SimdLevel::scalar};
-  if (int(best_simd_level()) >= int(SimdLevel::avx2)) levels.push_back(SimdLevel::avx2);
-  if (best_simd_level() == SimdLevel::avx512) levels.push_back(SimdLevel::avx512);
+  const std::vector<SimdLevel> levels = levels_here();
   for (const TieOrder tie : kTieOrders) {
     for (const KernelKind kind : exact_kernels()) {
       if (uses_embree(kind)) continue;
@@ -64,6 +70,43 @@ TEST(SimdLevels, IdenticalHitsAtEveryLevel) {
                                                << tie_name(tie) << ", ray " << i << " " << str(rays[i]);
         }
       }
+    }
+  }
+}
+
+// The leaf blocks store each triangle's corners in its summation order, but a hit is reported in
+// the input's terms. One triangle in each of its six corner orders, stacked along z so that one ray
+// meets them all, at every level: u and v weigh the input's corners 1 and 2 (the point they give
+// is where the ray is), enter is the facing of the input's winding, ng its normal.
+TEST(SimdLevels, HitsAreInTheInputCornerOrder) {
+  LevelGuard guard;
+  const Vec3d corners[3] = {{0.1, 0.2, 0.0}, {0.9, 0.3, 0.0}, {0.4, 0.8, 0.0}};
+  const int orders[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {0, 2, 1}, {2, 1, 0}, {1, 0, 2}};
+  std::vector<gen::Mesh> meshes;
+  for (int k = 0; k < 6; ++k) {
+    gen::Mesh m{"order" + std::to_string(k), {}, {{0, 1, 2}}};
+    for (int i = 0; i < 3; ++i) m.vertices.push_back(corners[orders[k][i]] + Vec3d{0.0, 0.0, 0.25 * k});
+    meshes.push_back(m);
+  }
+  const auto w = make_world(meshes);
+  const Vec3d through = corners[0] * 0.2 + corners[1] * 0.3 + corners[2] * 0.5;
+  Vec3d dir{0.01, -0.02, 1.0};
+  dir = dir * (1.0 / length(dir));
+  const Ray ray{through - dir * 2.0, dir};
+  for (const SimdLevel level : levels_here()) {
+    ASSERT_EQ(set_simd_level(level), level);
+    HitIterator it(w->accel, KernelKind::filter);
+    const std::vector<Hit> hits = kernel_hits(it, ray);
+    ASSERT_EQ(hits.size(), 6u) << simd_level_name(level);
+    for (const Hit& h : hits) {
+      const std::vector<Vec3d>& q = meshes[h.geom].vertices;
+      const Vec3d at = q[0] * (1.0 - double(h.u) - double(h.v)) + q[1] * double(h.u) + q[2] * double(h.v);
+      const Vec3d on_ray = ray.org + ray.dir * h.t;
+      EXPECT_NEAR(at.x, on_ray.x, 1e-5) << meshes[h.geom].name << " at " << simd_level_name(level);
+      EXPECT_NEAR(at.y, on_ray.y, 1e-5) << meshes[h.geom].name << " at " << simd_level_name(level);
+      EXPECT_EQ(h.enter, dot(ray.dir, cross(q[1] - q[0], q[2] - q[0])) < 0.0) << meshes[h.geom].name;
+      const Vec3f f0(q[0]), f1(q[1]), f2(q[2]);
+      EXPECT_EQ(h.ng, Vec3f(cross(f1 - f0, f2 - f0))) << meshes[h.geom].name;
     }
   }
 }
