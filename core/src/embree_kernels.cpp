@@ -33,7 +33,7 @@ void embree_exact_intersect(const RTCIntersectFunctionNArguments* args) {
   TriangleHit<float> th;
   if (!intersect(q->ray, tri.v0, tri.v1, tri.v2, q->lo, hi, th)) return;
   if (q->counters) ++q->counters->valid_hits;
-  const Hit key = order_key(tri, th);
+  const HitKey key = order_key(tri, th);
   if (q->have_last && !q->order.less(q->last, key)) return;
   auto before = [q](const Hit& a, const Hit& b) { return q->order.less(a, b); };
   switch (q->mode) {

@@ -71,7 +71,6 @@ NodeRef write_leaf(WideBvh<T>& out, std::uint32_t first, std::size_t count, cons
       blk.geom[l] = t.geom;
       blk.prim[l] = t.prim;
       blk.sum[l] = so;
-      if (is_odd(so)) blk.odd |= 1u << l;
       blk.valid |= 1u << l;
     }
   }

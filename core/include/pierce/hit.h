@@ -22,6 +22,15 @@ struct Hit {
   bool valid() const { return geom != kInvalidId; }
 };
 
+// What HitOrder ranks a hit by, without the rest of the record: the traversal's leaf callbacks
+// rank candidates by it and make the full Hit only for the ones they keep.
+struct HitKey {
+  double t;
+  std::uint32_t geom, prim;
+  bool enter;
+};
+inline HitKey key_of(const Hit& h) { return {h.t, h.geom, h.prim, h.enter}; }
+
 // How hits at equal t are ranked. `geom_prim` is Wald et al.'s (t, geom, prim).
 // `leave_before_enter` ranks leaving crossings first at equal t, then (geom, prim):
 // CSG classification needs a solid closed before its touching neighbour opens.
@@ -32,13 +41,18 @@ enum class TieOrder : std::uint8_t { geom_prim, leave_before_enter };
 struct HitOrder {
   TieOrder tie = TieOrder::geom_prim;
 
-  constexpr bool less(const Hit& a, const Hit& b) const {
+  // A and B: Hit or HitKey.
+  template <class A, class B>
+  constexpr bool less(const A& a, const B& b) const {
     if (a.t != b.t) return a.t < b.t;
     if (tie == TieOrder::leave_before_enter && a.enter != b.enter) return !a.enter;
     if (a.geom != b.geom) return a.geom < b.geom;
     return a.prim < b.prim;
   }
-  constexpr bool operator()(const Hit& a, const Hit& b) const { return less(a, b); }
+  template <class A, class B>
+  constexpr bool operator()(const A& a, const B& b) const {
+    return less(a, b);
+  }
 };
 
 inline bool same_hit(const Hit& a, const Hit& b) { return a.t == b.t && a.geom == b.geom && a.prim == b.prim; }

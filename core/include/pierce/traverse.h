@@ -111,6 +111,9 @@ struct TraversalPolicy {
   static constexpr bool kCullsInRange = false;
   // True if suspend() can return true (it then sees the pending nodes).
   static constexpr bool kSuspends = false;
+  // True if nothing the policy does depends on the order in which nodes are visited (it takes every
+  // hit in a range that never changes): children are then pushed unranked, in slot order.
+  static constexpr bool kAnyOrder = false;
   void culled(NodeEntry<T> /*node*/) {}
   template <class Pending>
   bool suspend(T /*next_tn*/, const Pending& /*pending*/) const {
@@ -141,14 +144,13 @@ inline void detail_leaf(const Ops& ops, const TriBlock<T>* blocks, NodeRef ref, 
     const simd::LeafLanes lanes = ops.tri_test(blk, p.lo(), p.hi(), finished);
     for (std::uint32_t todo = lanes.exact | lanes.hit; todo != 0; todo &= todo - 1) {
       const int l = __builtin_ctz(todo);
-      const bool odd = (blk.odd >> l & 1) != 0;
       TriangleHit<T> th;
       if (lanes.hit >> l & 1) {
         // Finished in SIMD against the range at the block's start, which the hits before it in
         // this block may have narrowed.
-        th = simd::lane_hit(finished, l, blk.sum[l], odd);
+        th = simd::lane_hit(finished, l, blk.sum[l]);
         if (!(th.t >= p.lo() && th.t <= p.hi())) continue;
-      } else if (!intersect_sorted(r, blk.corner(0, l), blk.corner(1, l), blk.corner(2, l), blk.sum[l], odd, p.lo(),
+      } else if (!intersect_sorted(r, blk.corner(0, l), blk.corner(1, l), blk.corner(2, l), blk.sum[l], p.lo(),
                                    p.hi(), th)) {
         continue;
       }
@@ -298,11 +300,12 @@ inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Conta
     const WideNode<T>& node = nodes[cur.ref];
     c.node_tests += std::uint64_t(__builtin_popcount(node.valid()));
     if constexpr (!decltype(pending)::kOrdered && !Policy::kCullsInRange) {
-      // Depth first: every child that passes goes onto the stack far to near in SIMD stores, and
-      // the nearest is descended into at once (taken from the registers, not read back; the
+      // Depth first: every child that passes goes onto the stack far to near in SIMD stores (in
+      // slot order, unranked, where the policy takes any order), and the nearest (the last
+      // stored) is descended into at once (taken from the registers, not read back; the
       // stack keeps the others). The others are prefetched; the nearest is read at once anyway.
       NodeEntry<T>* const pushed = pending.top();
-      const std::uint32_t n = ops.push_hits(node, p.lo(), p.hi(), pushed, cur);
+      const std::uint32_t n = ops.template push_hits<!Policy::kAnyOrder>(node, p.lo(), p.hi(), pushed, cur);
       if (n == 0) continue;
       detail_prefetch(nodes, blocks, pushed, n - 1);
       pending.grow(n - 1);
@@ -377,19 +380,18 @@ inline bool traverse(SimdLevel level, const WideBvh<T>& bvh, const TraversalRay<
 
 // Everything HitOrder looks at, without the rest of the record.
 template <typename T>
-inline Hit order_key(const TriBlock<T>& b, int lane, const TriangleHit<T>& th) {
-  Hit h;
-  h.t = double(th.t);
-  h.geom = b.geom[lane];
-  h.prim = b.prim[lane];
-  h.enter = th.enter;
-  return h;
+inline HitKey order_key(const TriBlock<T>& b, int lane, const TriangleHit<T>& th) {
+  return {double(th.t), b.geom[lane], b.prim[lane], th.enter};
 }
 
 // The hit record for a triangle of a leaf block; geometric normal from the input's corners.
 template <typename T>
 inline Hit make_hit(const TriBlock<T>& b, int lane, const TriangleHit<T>& th) {
-  Hit h = order_key(b, lane, th);
+  Hit h;
+  h.t = double(th.t);
+  h.geom = b.geom[lane];
+  h.prim = b.prim[lane];
+  h.enter = th.enter;
   h.u = float(th.u);
   h.v = float(th.v);
   const Vec3<T> v0 = b.input_corner(0, lane);

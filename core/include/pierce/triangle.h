@@ -92,6 +92,17 @@ constexpr InputWeights input_weights(SumOrder so) {
   return w;
 }
 
+// The hit in the input's terms, from det and the edge functions U, V, W of the sorted corners:
+// u and v are the weights of input corners 1 and 2, and the facing flips with the parity of the
+// sort. Shared by the scalar test and the lanes finished in SIMD.
+template <typename T>
+inline TriangleHit<T> input_frame_hit(T t, T det, T U, T V, T W, SumOrder so) {
+  const T inv_det = T(1) / det;
+  const T w[3] = {U, V, W};
+  const InputWeights in = input_weights(so);
+  return {t, w[in.u] * inv_det, w[in.v] * inv_det, (det > T(0)) != is_odd(so)};
+}
+
 namespace detail {
 
 // The test is computed on the corners in SumOrder (q0, q1, q2 below). Reordering the corners only
@@ -104,10 +115,10 @@ namespace detail {
 // su, sv, sw are known (the signs already agree): det, t, the clamp into the triangle's slab
 // interval, the range. za, zb, zc: the sorted corners' kz coordinates relative to the origin.
 // kSignsOfValues: the signs are those of U, V, W themselves (no exact path was taken), so nothing
-// needs fixing. The hit is reported in the input's terms (so, odd).
+// needs fixing. The hit is reported in the input's terms (so).
 template <bool kSignsOfValues, typename T>
 inline bool finish_intersect(const TraversalRay<T>& r, const Vec3<T>& q0, const Vec3<T>& q1, const Vec3<T>& q2,
-                             SumOrder so, bool odd, T U, T V, T W, int su, int sv, int sw, T za, T zb, T zc, T tlo,
+                             SumOrder so, T U, T V, T W, int su, int sv, int sw, T za, T zb, T zc, T tlo,
                              T thi, TriangleHit<T>& out) {
   // Values that disagree with their exact sign (a double's false zero or wrong sign, a value that
   // underflowed, an exact zero decided by the tie rule) would spoil det: replace them by the
@@ -147,12 +158,7 @@ inline bool finish_intersect(const TraversalRay<T>& r, const Vec3<T>& q0, const 
   // Not finite: a distance beyond T's range (a tiny direction), never reported.
   if (!(t >= tlo && t <= thi) || !std::isfinite(t)) return false;
 
-  const T w[3] = {U, V, W};
-  const InputWeights in = input_weights(so);
-  out.t = t;
-  out.u = w[in.u] * inv_det;
-  out.v = w[in.v] * inv_det;
-  out.enter = (det > T(0)) != odd;
+  out = input_frame_hit(t, det, U, V, W, so);
   return true;
 }
 
@@ -164,7 +170,7 @@ inline bool finish_intersect(const TraversalRay<T>& r, const Vec3<T>& q0, const 
 // leaves store them; the hit is reported in the input's terms.
 template <typename T>
 inline bool intersect_sorted(const TraversalRay<T>& r, const Vec3<T>& q0, const Vec3<T>& q1, const Vec3<T>& q2,
-                             SumOrder so, bool odd, T tlo, T thi, TriangleHit<T>& out) {
+                             SumOrder so, T tlo, T thi, TriangleHit<T>& out) {
   const Vec3<T> a = q0 - r.org, b = q1 - r.org, c = q2 - r.org;
   const T ax = a[r.kx] - r.sx * a[r.kz], ay = a[r.ky] - r.sy * a[r.kz];
   const T bx = b[r.kx] - r.sx * b[r.kz], by = b[r.ky] - r.sy * b[r.kz];
@@ -196,7 +202,7 @@ inline bool intersect_sorted(const TraversalRay<T>& r, const Vec3<T>& q0, const 
     sw = detail::perturbed_sign(exact::diff_of_products_sign(bx, ay, by, ax), bx, by, ax, ay);
   }
   if (su == 0 || su != sv || su != sw) return false;
-  return detail::finish_intersect<false>(r, q0, q1, q2, so, odd, U, V, W, su, sv, sw, a[r.kz], b[r.kz], c[r.kz], tlo,
+  return detail::finish_intersect<false>(r, q0, q1, q2, so, U, V, W, su, sv, sw, a[r.kz], b[r.kz], c[r.kz], tlo,
                                          thi, out);
 }
 
@@ -205,7 +211,7 @@ template <typename T>
 inline bool intersect(const TraversalRay<T>& r, const Vec3<T>& p0, const Vec3<T>& p1, const Vec3<T>& p2,
                       SumOrder so, T tlo, T thi, TriangleHit<T>& out) {
   const Vec3<T> p[3] = {p0, p1, p2};
-  return intersect_sorted(r, p[so.o[0]], p[so.o[1]], p[so.o[2]], so, is_odd(so), tlo, thi, out);
+  return intersect_sorted(r, p[so.o[0]], p[so.o[1]], p[so.o[2]], so, tlo, thi, out);
 }
 
 template <typename T>

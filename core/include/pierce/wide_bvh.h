@@ -65,7 +65,6 @@ struct alignas(64) TriBlock {
   // Trivial (no member initialisers), so blocks can be allocated untouched and first written by
   // the thread that fills them; TriBlock<T>{} is all zeros.
   std::uint32_t valid;  // bit l: lane l holds a triangle (padding lanes are masked, never repeated)
-  std::uint32_t odd;    // bit l: sum[l] is an odd permutation (the stored winding is reversed)
   SumOrder sum[kBlockLanes];  // the stored corner k of lane l is the input's corner sum[l].o[k]
   alignas(32) T v[3][3][kBlockLanes];  // v[k][axis][lane]: the input corners in SumOrder
   std::uint32_t geom[kBlockLanes];

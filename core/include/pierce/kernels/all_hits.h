@@ -34,6 +34,7 @@ class AllHitsKernel : public WideKernel<T, C> {
 
  private:
   struct Gather : TraversalPolicy<T> {
+    static constexpr bool kAnyOrder = true;  // every hit in [tmin, tmax], sorted afterwards
     const TraversalRay<T>& r;
     std::vector<Hit>& hits;
     Gather(const TraversalRay<T>& ray, std::vector<Hit>& out) : r(ray), hits(out) {}

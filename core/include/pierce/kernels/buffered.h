@@ -66,7 +66,7 @@ class BufferedKernel : public WideKernel<T, C> {
       return k.buf_[0].t < double(next_tn < m ? next_tn : m);
     }
     void hit(const TriBlock<T>& b, int l, const TriangleHit<T>& h) {
-      const Hit key = order_key(b, l, h);
+      const HitKey key = order_key(b, l, h);
       if (k.resume_.done(k.order_, key)) return;
       k.insert(key, b, l, h);
     }
@@ -85,22 +85,20 @@ class BufferedKernel : public WideKernel<T, C> {
     return have_cut_ && T(cut_.t) < u ? T(cut_.t) : u;
   }
   // A hit (or everything in a node, from `tn` on) left for a later pass.
-  void lose(const Hit& key) {
+  void lose(const HitKey& key) {
     truncated_ = true;
     if (!have_cut_ || this->order_.less(key, cut_)) cut_ = key, have_cut_ = true;
   }
-  static Hit node_key(T tn) {  // ranks before every hit at t >= tn, under either tie policy
-    Hit h;
-    h.t = double(tn), h.geom = 0, h.prim = 0, h.enter = false;
-    return h;
+  static HitKey node_key(T tn) {  // ranks before every hit at t >= tn, under either tie policy
+    return {double(tn), 0, 0, false};
   }
 
-  void insert(const Hit& key, const TriBlock<T>& b, int lane, const TriangleHit<T>& th) {
+  void insert(const HitKey& key, const TriBlock<T>& b, int lane, const TriangleHit<T>& th) {
     // At or past the cut it could be released before a lost hit that ranks first: a later pass finds it.
     if (have_cut_ && !this->order_.less(key, cut_)) return;
     if (size_ == Capacity) {
       if (!this->order_.less(key, buf_[Capacity - 1])) return lose(key);
-      lose(buf_[Capacity - 1]);  // the farthest entry falls off
+      lose(key_of(buf_[Capacity - 1]));  // the farthest entry falls off
       --size_;
     }
     std::size_t i = size_;
@@ -115,7 +113,7 @@ class BufferedKernel : public WideKernel<T, C> {
   std::array<Hit, Capacity> buf_{};
   std::size_t size_ = 0;
   bool truncated_ = false;
-  Hit cut_;  // first hit lost in this pass (by the tie order); buffered hits all rank before it
+  HitKey cut_{};  // first hit lost in this pass (by the tie order); buffered hits all rank before it
   bool have_cut_ = false;
   ResumeAfter resume_;
 };

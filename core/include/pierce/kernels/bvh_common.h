@@ -25,13 +25,8 @@ inline Hit make_hit(const Triangle<T>& tri, const TriangleHit<T>& th) {
 
 // Hit identity for ordering without the full record: everything HitOrder looks at.
 template <typename T>
-inline Hit order_key(const Triangle<T>& tri, const TriangleHit<T>& th) {
-  Hit h;
-  h.t = double(th.t);
-  h.geom = tri.geom;
-  h.prim = tri.prim;
-  h.enter = th.enter;
-  return h;
+inline HitKey order_key(const Triangle<T>& tri, const TriangleHit<T>& th) {
+  return {double(th.t), tri.geom, tri.prim, th.enter};
 }
 
 }  // namespace pierce

@@ -56,7 +56,7 @@ class NodeCullKernel : public WideKernel<T, C> {
     T cull_bound() const { return hi(); }
     void hit(const TriBlock<T>& b, int l, const TriangleHit<T>& h) {
       const HitBefore before{k.order_};
-      const Hit key = order_key(b, l, h);
+      const HitKey key = order_key(b, l, h);
       if (k.resume_.done(k.order_, key)) return;
       if (k.batch_.size() == k.n_) {
         if (!k.order_.less(key, k.batch_.front())) return;

@@ -39,7 +39,10 @@ class QueueKernel : public WideKernel<T, C> {
     depth_ = max_hits == 0 ? 1 : max_hits;
     bound_ = this->ray_.tmax;
     deferred_.clear();
-    seed(*this->bvh_, this->ray_, this->ray_.tmin, this->ray_.tmax, deferred_, this->counters);
+    // The first pass, from the root (what the first next() would do, without the heap).
+    this->seed_root(this->ray_.tmin, this->ray_.tmax);
+    Descend p{*this};
+    this->run(p);
   }
 
   bool next(Hit& out) {

@@ -37,13 +37,13 @@ class RestartKernel : public WideKernel<T, C> {
     const TriBlock<T>* block = nullptr;
     int lane = 0;
     TriangleHit<T> th{};
-    Hit best;
+    HitKey best{};
     Closest(const RestartKernel& kernel, T lo, T hi) : k(kernel), lo_(lo), hi_(hi) {}
     T lo() const { return lo_; }
     T hi() const { return hi_; }
     T cull_bound() const { return hi_; }
     void hit(const TriBlock<T>& b, int l, const TriangleHit<T>& h) {
-      const Hit key = order_key(b, l, h);
+      const HitKey key = order_key(b, l, h);
       if (k.resume_.done(k.order_, key)) return;
       if (block != nullptr && !k.order_.less(key, best)) return;
       best = key, block = &b, lane = l, th = h, hi_ = h.t;

@@ -19,7 +19,7 @@ struct ResumeAfter {
   void clear() { have = false; }
   void set(const Hit& h) { last = h, have = true; }
   // True if `key` was returned already or ranks before what was.
-  bool done(const HitOrder& order, const Hit& key) const { return have && !order.less(last, key); }
+  bool done(const HitOrder& order, const HitKey& key) const { return have && !order.less(last, key); }
   template <typename T>
   T lower(T tmin) const {
     return have ? std::max(tmin, T(last.t)) : tmin;

@@ -47,13 +47,11 @@ struct BlockHits {
   alignas(32) T t[kBlockLanes], det[kBlockLanes], e[3][kBlockLanes];
 };
 
-// The hit record of lane l finished in SIMD: finish_intersect's last lines (the signs were those of
+// The hit record of lane l finished in SIMD, as finish_intersect makes it (the signs were those of
 // the values, so nothing was fixed).
 template <typename T>
-inline TriangleHit<T> lane_hit(const BlockHits<T>& h, int l, SumOrder so, bool odd) {
-  const T inv_det = T(1) / h.det[l];
-  const InputWeights in = input_weights(so);
-  return {h.t[l], h.e[in.u][l] * inv_det, h.e[in.v][l] * inv_det, (h.det[l] > T(0)) != odd};
+inline TriangleHit<T> lane_hit(const BlockHits<T>& h, int l, SumOrder so) {
+  return input_frame_hit(h.t[l], h.det[l], h.e[0][l], h.e[1][l], h.e[2][l], so);
 }
 
 // The scalar path: every level reduces to this on CPUs without AVX2, and the double BVH uses it.
@@ -77,7 +75,10 @@ struct ScalarOps {
     return mask;
   }
   // The children that pass, stored at `top` far to near (the nearest last, also given in `nearest`,
-  // so the loop can descend into it without reading it back); returns how many.
+  // so the loop can descend into it without reading it back); returns how many. kRanked false: the
+  // caller does not care in which order (the SIMD levels then store them in slot order, unranked;
+  // here ranking costs nothing extra).
+  template <bool kRanked = true>
   std::uint32_t push_hits(const WideNode<T>& n, T lo, T hi, NodeEntry<T>* top, NodeEntry<T>& nearest) const {
     T tn[kWideArity];
     NodeRef child[kWideArity];
@@ -147,16 +148,17 @@ struct SimdRay {
   float sz;
   std::uint32_t near_offset[3], far_offset[3];  // byte offsets of the near and far planes in a WideNode
   bool zero[3];
-  bool neg[3];  // inv < 0: slab() swaps the planes
   bool any_zero;  // a direction component is zero: the slab test's parallel-axis path
-  int oct, kx, ky, kz;
+  int oct;
+  // Byte offsets of the shear frame's axes kx, ky, kz within one corner of a TriBlock (v[k]): three
+  // offsets serve all three corners, which keeps the leaf test's address registers few.
+  std::uint32_t kx_offset, ky_offset, kz_offset;
 
   __attribute__((target("avx2"))) explicit SimdRay(const TraversalRay<float>& r) {
     for (int a = 0; a < 3; ++a) {
       org[a] = _mm256_set1_ps(r.org[a]);
       inv[a] = _mm256_set1_ps(r.inv[a]);
       zero[a] = r.zero[a];
-      neg[a] = r.inv[a] < 0.0f;
       const auto lo = std::uint32_t(offsetof(WideNode<float>, lo) + sizeof(float) * kWideArity * std::size_t(a));
       const auto hi = std::uint32_t(offsetof(WideNode<float>, hi) + sizeof(float) * kWideArity * std::size_t(a));
       // slab(): t0 from lo, t1 from hi, swapped where inv < 0 (arithmetic, not a branch: random
@@ -167,11 +169,21 @@ struct SimdRay {
     }
     any_zero = zero[0] || zero[1] || zero[2];
     pad = _mm256_set1_ps(r.pad);
-    kx = r.kx, ky = r.ky, kz = r.kz;
-    okx = _mm256_set1_ps(r.org[kx]), oky = _mm256_set1_ps(r.org[ky]), okz = _mm256_set1_ps(r.org[kz]);
+    constexpr auto kAxisBytes = std::uint32_t(sizeof(float) * kBlockLanes);
+    kx_offset = std::uint32_t(r.kx) * kAxisBytes, ky_offset = std::uint32_t(r.ky) * kAxisBytes;
+    kz_offset = std::uint32_t(r.kz) * kAxisBytes;
+    okx = _mm256_set1_ps(r.org[r.kx]), oky = _mm256_set1_ps(r.org[r.ky]), okz = _mm256_set1_ps(r.org[r.kz]);
     sx = _mm256_set1_ps(r.sx), sy = _mm256_set1_ps(r.sy);
     sz = r.sz;
     oct = octant(r);
+  }
+
+  // inv[a] < 0: slab() swaps the planes (the near plane is the upper one).
+  bool swapped(int a) const { return near_offset[a] > far_offset[a]; }
+
+  // Corner c's coordinates along the axis at `offset` (kx_offset, ky_offset or kz_offset), eight lanes.
+  static const float* axis(const TriBlock<float>& b, int c, std::uint32_t offset) {
+    return reinterpret_cast<const float*>(reinterpret_cast<const char*>(b.v[c]) + offset);
   }
 
   static const float* plane(const WideNode<float>& n, std::uint32_t offset) {
@@ -216,9 +228,9 @@ struct SimdRay {
   __attribute__((target("avx2"))) void edges(const TriBlock<float>& b, __m256 e[3], __m256 z[3]) const {
     __m256 px[3], py[3];
     for (int c = 0; c < 3; ++c) {
-      z[c] = _mm256_sub_ps(_mm256_load_ps(b.v[c][kz]), okz);
-      px[c] = _mm256_sub_ps(_mm256_sub_ps(_mm256_load_ps(b.v[c][kx]), okx), _mm256_mul_ps(sx, z[c]));
-      py[c] = _mm256_sub_ps(_mm256_sub_ps(_mm256_load_ps(b.v[c][ky]), oky), _mm256_mul_ps(sy, z[c]));
+      z[c] = _mm256_sub_ps(_mm256_load_ps(axis(b, c, kz_offset)), okz);
+      px[c] = _mm256_sub_ps(_mm256_sub_ps(_mm256_load_ps(axis(b, c, kx_offset)), okx), _mm256_mul_ps(sx, z[c]));
+      py[c] = _mm256_sub_ps(_mm256_sub_ps(_mm256_load_ps(axis(b, c, ky_offset)), oky), _mm256_mul_ps(sy, z[c]));
     }
     // U = cx*by - cy*bx, V = ax*cy - ay*cx, W = bx*ay - by*ax
     e[0] = _mm256_sub_ps(_mm256_mul_ps(px[2], py[1]), _mm256_mul_ps(py[2], px[1]));
@@ -255,7 +267,7 @@ struct SimdRay {
       }
       __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(L, org[a]), inv[a]);
       __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(H, org[a]), inv[a]);
-      if (neg[a]) std::swap(t0, t1);
+      if (swapped(a)) std::swap(t0, t1);
       tn = _mm256_max_ps(t0, tn);
       tf = _mm256_min_ps(t1, tf);
     }
@@ -277,12 +289,26 @@ struct SimdRay {
   }
 
   // The block's test (ScalarOps::tri_test, with lanes finished here). `inside`: lanes with edge
-  // functions non-zero, finite and of one sign; `exact`: lanes with a zero or non-finite one.
-  __attribute__((target("avx2"))) LeafLanes tri_test(const TriBlock<float>& b, std::uint32_t inside,
-                                                     std::uint32_t exact, const __m256 e[3], const __m256 z[3],
-                                                     float lo, float hi, BlockHits<float>& out) const {
-    inside &= b.valid;
-    exact &= b.valid;
+  // functions non-zero, finite and of one sign; `exact`: lanes with a zero or non-finite one
+  // (decided by the exact scalar test).
+  __attribute__((target("avx2"))) LeafLanes tri_test(const TriBlock<float>& b, float lo, float hi,
+                                                     BlockHits<float>& out) const {
+    __m256 e[3], z[3];
+    edges(b, e, z);
+    const __m256 zero = _mm256_setzero_ps();
+    const __m256 sum = _mm256_add_ps(_mm256_add_ps(e[0], e[1]), e[2]);
+    const __m256 finite = _mm256_cmp_ps(_mm256_andnot_ps(_mm256_set1_ps(-0.0f), sum),
+                                        _mm256_set1_ps(std::numeric_limits<float>::infinity()), _CMP_LT_OQ);
+    __m256 any_zero = _mm256_cmp_ps(e[0], zero, _CMP_EQ_OQ);
+    __m256 all_pos = _mm256_cmp_ps(e[0], zero, _CMP_GT_OQ), all_neg = _mm256_cmp_ps(e[0], zero, _CMP_LT_OQ);
+    for (int k = 1; k < 3; ++k) {
+      any_zero = _mm256_or_ps(any_zero, _mm256_cmp_ps(e[k], zero, _CMP_EQ_OQ));
+      all_pos = _mm256_and_ps(all_pos, _mm256_cmp_ps(e[k], zero, _CMP_GT_OQ));
+      all_neg = _mm256_and_ps(all_neg, _mm256_cmp_ps(e[k], zero, _CMP_LT_OQ));
+    }
+    const std::uint32_t exact =
+        b.valid & (std::uint32_t(_mm256_movemask_ps(any_zero)) | ~std::uint32_t(_mm256_movemask_ps(finite)));
+    const std::uint32_t inside = b.valid & std::uint32_t(_mm256_movemask_ps(_mm256_or_ps(all_pos, all_neg))) & ~exact;
     if (inside == 0) return {exact, 0};
     __m256 overflow;
     const auto hit = std::uint32_t(_mm256_movemask_ps(finish(b, e, z, lo, hi, out, overflow)));
@@ -324,20 +350,27 @@ struct Avx2Ops {
   }
 
   // ScalarOps::push_hits: two left-packed stores of four entries each.
+  template <bool kRanked = true>
   __attribute__((target("avx2"))) std::uint32_t push_hits(const WideNode<float>& n, float lo, float hi,
                                                           NodeEntry<float>* top, NodeEntry<float>& nearest) const {
     const std::uint32_t order = n.order[ray.oct];
     __m256 tn;
     const __m256 pass = slot_hits(n, order, lo, hi, tn);
-    const __m256i rank = rank_slots_far_to_near(order);
-    const auto mask = std::uint32_t(_mm256_movemask_ps(_mm256_permutevar8x32_ps(pass, rank)));
-    if (mask == 0) return 0;
-    const __m256 tn_ranked = _mm256_permutevar8x32_ps(tn, rank);
-    const __m256i child_ranked =
-        _mm256_permutevar8x32_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(n.child)), rank);
-    nearest = lane_entry(tn_ranked, child_ranked, 31 - __builtin_clz(mask));
+    __m256i child = _mm256_load_si256(reinterpret_cast<const __m256i*>(n.child));
+    std::uint32_t mask;
+    if constexpr (kRanked) {
+      const __m256i rank = rank_slots_far_to_near(order);
+      mask = std::uint32_t(_mm256_movemask_ps(_mm256_permutevar8x32_ps(pass, rank)));
+      if (mask == 0) return 0;
+      tn = _mm256_permutevar8x32_ps(tn, rank);
+      child = _mm256_permutevar8x32_epi32(child, rank);
+    } else {
+      mask = std::uint32_t(_mm256_movemask_ps(pass));
+      if (mask == 0) return 0;
+    }
+    nearest = lane_entry(tn, child, 31 - __builtin_clz(mask));
     __m256i first, second;
-    entry_pairs(tn_ranked, child_ranked, first, second);
+    entry_pairs(tn, child, first, second);
     const std::uint32_t m0 = mask & 15u, m1 = mask >> 4;
     const auto n0 = std::uint32_t(__builtin_popcount(m0));
     auto* out = reinterpret_cast<__m256i*>(top);
@@ -349,22 +382,7 @@ struct Avx2Ops {
 
   __attribute__((target("avx2"))) LeafLanes tri_test(const TriBlock<float>& b, float lo, float hi,
                                                      BlockHits<float>& out) const {
-    __m256 e[3], z[3];
-    ray.edges(b, e, z);
-    const __m256 zero = _mm256_setzero_ps();
-    const __m256 sum = _mm256_add_ps(_mm256_add_ps(e[0], e[1]), e[2]);
-    const __m256 abs_sum = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), sum);
-    const __m256 finite = _mm256_cmp_ps(abs_sum, _mm256_set1_ps(std::numeric_limits<float>::infinity()), _CMP_LT_OQ);
-    const __m256 any_zero = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(e[0], zero, _CMP_EQ_OQ), _mm256_cmp_ps(e[1], zero, _CMP_EQ_OQ)),
-                                         _mm256_cmp_ps(e[2], zero, _CMP_EQ_OQ));
-    const __m256 all_pos = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(e[0], zero, _CMP_GT_OQ), _mm256_cmp_ps(e[1], zero, _CMP_GT_OQ)),
-                                         _mm256_cmp_ps(e[2], zero, _CMP_GT_OQ));
-    const __m256 all_neg = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(e[0], zero, _CMP_LT_OQ), _mm256_cmp_ps(e[1], zero, _CMP_LT_OQ)),
-                                         _mm256_cmp_ps(e[2], zero, _CMP_LT_OQ));
-    // Exact path for zero or non-finite edge functions (decided there), SIMD for equal signs.
-    const std::uint32_t exact = std::uint32_t(_mm256_movemask_ps(any_zero)) | (~std::uint32_t(_mm256_movemask_ps(finite)) & 0xFFu);
-    const std::uint32_t inside = std::uint32_t(_mm256_movemask_ps(_mm256_or_ps(all_pos, all_neg))) & ~exact;
-    return ray.tri_test(b, inside, exact, e, z, lo, hi, out);
+    return ray.tri_test(b, lo, hi, out);
   }
 };
 
@@ -401,6 +419,7 @@ struct Avx512Ops {
   }
 
   // ScalarOps::push_hits: compressed in registers (a compress straight to memory is slow on Zen 4).
+  template <bool kRanked = true>
   __attribute__((target(PIERCE_AVX512_TARGET))) std::uint32_t push_hits(const WideNode<float>& n, float lo, float hi,
                                                                         NodeEntry<float>* top,
                                                                         NodeEntry<float>& nearest) const {
@@ -408,14 +427,17 @@ struct Avx512Ops {
     __m256 tn;
     const __mmask8 ok = slot_hits(n, order, lo, hi, tn);
     if (ok == 0) return 0;
-    const __m256i rank = rank_slots_far_to_near(order);
-    const std::uint32_t mask = _mm256_movepi32_mask(_mm256_permutexvar_epi32(rank, _mm256_movm_epi32(ok)));
-    const __m256 tn_ranked = _mm256_permutexvar_ps(rank, tn);
-    const __m256i child_ranked =
-        _mm256_permutexvar_epi32(rank, _mm256_load_si256(reinterpret_cast<const __m256i*>(n.child)));
-    nearest = lane_entry(tn_ranked, child_ranked, 31 - __builtin_clz(mask));
+    __m256i child = _mm256_load_si256(reinterpret_cast<const __m256i*>(n.child));
+    std::uint32_t mask = ok;
+    if constexpr (kRanked) {
+      const __m256i rank = rank_slots_far_to_near(order);
+      mask = _mm256_movepi32_mask(_mm256_permutexvar_epi32(rank, _mm256_movm_epi32(ok)));
+      tn = _mm256_permutexvar_ps(rank, tn);
+      child = _mm256_permutexvar_epi32(rank, child);
+    }
+    nearest = lane_entry(tn, child, 31 - __builtin_clz(mask));
     __m256i first, second;
-    entry_pairs(tn_ranked, child_ranked, first, second);
+    entry_pairs(tn, child, first, second);
     const auto m0 = __mmask8(mask & 15u), m1 = __mmask8(mask >> 4);
     const auto n0 = std::uint32_t(__builtin_popcount(m0));
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(top), _mm256_maskz_compress_epi64(m0, first));
@@ -423,23 +445,10 @@ struct Avx512Ops {
     return n0 + std::uint32_t(__builtin_popcount(m1));
   }
 
+  // SimdRay's (AVX2 instructions: the classification has no use for mask registers).
   __attribute__((target(PIERCE_AVX512_TARGET))) LeafLanes tri_test(const TriBlock<float>& b, float lo, float hi,
                                                                      BlockHits<float>& out) const {
-    __m256 e[3], z[3];
-    ray.edges(b, e, z);
-    const __m256 zero = _mm256_setzero_ps();
-    const __m256 sum = _mm256_add_ps(_mm256_add_ps(e[0], e[1]), e[2]);
-    const __mmask8 finite = _mm256_cmp_ps_mask(_mm256_andnot_ps(_mm256_set1_ps(-0.0f), sum),
-                                               _mm256_set1_ps(std::numeric_limits<float>::infinity()), _CMP_LT_OQ);
-    const __mmask8 any_zero = _mm256_cmp_ps_mask(e[0], zero, _CMP_EQ_OQ) | _mm256_cmp_ps_mask(e[1], zero, _CMP_EQ_OQ) |
-                              _mm256_cmp_ps_mask(e[2], zero, _CMP_EQ_OQ);
-    const __mmask8 all_pos = _mm256_mask_cmp_ps_mask(
-        _mm256_mask_cmp_ps_mask(_mm256_cmp_ps_mask(e[0], zero, _CMP_GT_OQ), e[1], zero, _CMP_GT_OQ), e[2], zero, _CMP_GT_OQ);
-    const __mmask8 all_neg = _mm256_mask_cmp_ps_mask(
-        _mm256_mask_cmp_ps_mask(_mm256_cmp_ps_mask(e[0], zero, _CMP_LT_OQ), e[1], zero, _CMP_LT_OQ), e[2], zero, _CMP_LT_OQ);
-    const std::uint32_t exact = std::uint32_t(any_zero | __mmask8(~finite));
-    const std::uint32_t inside = std::uint32_t(all_pos | all_neg) & ~exact;
-    return ray.tri_test(b, inside, exact, e, z, lo, hi, out);
+    return ray.tri_test(b, lo, hi, out);
   }
 };
 
