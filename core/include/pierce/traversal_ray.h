@@ -4,7 +4,11 @@
 // absolute padding used to keep box and triangle decisions consistent.
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <utility>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "pierce/ray.h"
 #include "pierce/vec3.h"
@@ -24,15 +28,9 @@ struct TraversalRay {
   // scene_max_abs: largest |coordinate| in the scene, for the padding.
   static TraversalRay make(const Ray& r, double scene_max_abs) {
     TraversalRay tr;
-    tr.org = Vec3<T>(r.org);
-    tr.dir = Vec3<T>(r.dir);
-    const T d[3] = {tr.dir.x, tr.dir.y, tr.dir.z};
-    T inv[3];
-    for (int a = 0; a < 3; ++a) {
-      tr.zero[a] = d[a] == T(0);
-      inv[a] = tr.zero[a] ? T(0) : T(1) / d[a];
-    }
-    tr.inv = {inv[0], inv[1], inv[2]};
+    T d[3], inv[3];
+    bool finite;  // origin and direction finite in T
+    prepare_axes(r, tr, d, inv, finite);
     const T ax = std::abs(d[0]), ay = std::abs(d[1]), az = std::abs(d[2]);
     // kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2), looked up rather than branched on
     // (random directions would mispredict it).
@@ -58,8 +56,50 @@ struct TraversalRay {
     // 2^-20 of the t-span of the scene as seen from this origin: far above the rounding of
     // the triangle test's projection, far below anything that costs traversal work.
     tr.pad = T((max_abs(r.org) + scene_max_abs) / (dmax > 0 ? dmax : 1.0) * 0x1p-20);
-    tr.ok = !(tr.zero[0] && tr.zero[1] && tr.zero[2]) && all_finite(tr.org) && all_finite(tr.dir);
+    tr.ok = !(tr.zero[0] & tr.zero[1] & tr.zero[2]) & finite;
     return tr;
+  }
+
+  // org, dir, zero and inv of tr (inv 0 where the component is 0), the direction and its inverse
+  // as arrays, and whether origin and direction are finite in T.
+  static void prepare_axes(const Ray& r, TraversalRay& tr, T d[3], T inv[3], bool& finite) {
+#if defined(__SSE2__)
+    if constexpr (std::is_same_v<T, float>) {
+      // The same conversions, divisions and tests, four lanes at a time (lane 3 is padding): about
+      // half the instructions of the scalar code, which is a noticeable part of a first-hit ray.
+      const auto load = [](const Vec3d& v) {
+        return _mm_movelh_ps(_mm_cvtpd_ps(_mm_loadu_pd(&v.x)), _mm_cvtpd_ps(_mm_load_sd(&v.z)));
+      };
+      const __m128 o = load(r.org), dv = load(r.dir), one = _mm_set1_ps(1.0f);
+      const __m128 is_zero = _mm_cmpeq_ps(dv, _mm_setzero_ps());
+      // Divides by 1 where the component is zero, so no division by zero is made.
+      const __m128 q = _mm_div_ps(one, _mm_or_ps(_mm_and_ps(is_zero, one), _mm_andnot_ps(is_zero, dv)));
+      const __m128 abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff)),
+                   big = _mm_set1_ps(std::numeric_limits<float>::max());
+      const __m128 in_range = _mm_and_ps(_mm_cmple_ps(_mm_and_ps(o, abs_mask), big),
+                                         _mm_cmple_ps(_mm_and_ps(dv, abs_mask), big));
+      finite = (_mm_movemask_ps(in_range) & 7) == 7;
+      const int zero_bits = _mm_movemask_ps(is_zero);
+      alignas(16) float ob[4], db[4], ib[4];
+      _mm_store_ps(ob, o);
+      _mm_store_ps(db, dv);
+      _mm_store_ps(ib, _mm_andnot_ps(is_zero, q));
+      for (int a = 0; a < 3; ++a) d[a] = db[a], inv[a] = ib[a], tr.zero[a] = (zero_bits >> a & 1) != 0;
+      tr.org = {ob[0], ob[1], ob[2]};
+      tr.dir = {d[0], d[1], d[2]};
+      tr.inv = {inv[0], inv[1], inv[2]};
+      return;
+    }
+#endif
+    tr.org = Vec3<T>(r.org);
+    tr.dir = Vec3<T>(r.dir);
+    for (int a = 0; a < 3; ++a) {
+      d[a] = tr.dir[std::size_t(a)];
+      tr.zero[a] = d[a] == T(0);
+      inv[a] = tr.zero[a] ? T(0) : T(1) / d[a];
+    }
+    tr.inv = {inv[0], inv[1], inv[2]};
+    finite = all_finite(tr.org) && all_finite(tr.dir);
   }
 
   bool valid() const { return ok; }
