@@ -122,7 +122,8 @@ struct Settings {
 };
 
 // Every cell of every row: a warm-up on the first eighth of the rays, then `reps` timed passes
-// over all of them, interleaved across cells (see CellJob).
+// over all of them, interleaved across cells (see CellJob), each after an untimed pass over the
+// first sixteenth.
 void time_rows(std::vector<Row>& rows, std::size_t ray_count, int reps) {
   std::vector<Counters> before;
   for (Row& row : rows)
@@ -133,21 +134,31 @@ void time_rows(std::vector<Row>& rows, std::size_t ray_count, int reps) {
       row.jobs[c].pass(cell, 0, std::max<std::size_t>(1, ray_count / 8));
       before.push_back(row.jobs[c].counters());
     }
-  for (int r = 0; r < reps; ++r)
+  // Counts of the untimed passes below, taken out of the cells' counters afterwards.
+  std::vector<Counters> untimed(before.size());
+  for (int r = 0; r < reps; ++r) {
+    std::size_t k = 0;
     for (Row& row : rows)
-      for (std::size_t c = 0; c < row.cells.size(); ++c) {
+      for (std::size_t c = 0; c < row.cells.size(); ++c, ++k) {
         Cell& cell = row.cells[c];
+        // Every cell starts with its own data in the caches: the rows use different structures
+        // (Embree's scenes, Pierce's BVH), and without this the first row of each repetition ran
+        // on data the previous row had evicted.
+        const Counters warm_from = row.jobs[c].counters();
+        row.jobs[c].pass(cell, 0, std::max<std::size_t>(1, ray_count / 16));
+        untimed[k] += row.jobs[c].counters() - warm_from;
         const auto t0 = Clock::now();
         const Tally t = row.jobs[c].pass(cell, 0, ray_count);
         cell.seconds.push_back(seconds_since(t0));
         if (r == 0) cell.tally = t;
         else if (!(t == cell.tally)) cell.deterministic = false;
       }
+  }
   std::size_t k = 0;
   for (Row& row : rows)
     for (std::size_t c = 0; c < row.cells.size(); ++c, ++k) {
       Cell& cell = row.cells[c];
-      const Counters after = row.jobs[c].counters();
+      const Counters after = row.jobs[c].counters() - untimed[k];
       cell.counters = {after.node_tests - before[k].node_tests, after.traversal_steps - before[k].traversal_steps,
                        after.prim_tests - before[k].prim_tests, after.valid_hits - before[k].valid_hits,
                        after.leaf_visits - before[k].leaf_visits};
@@ -716,7 +727,7 @@ int run(int argc, char** argv) {
             << "Embree " << RTC_VERSION_STRING << ", oneTBB " << TBB_VERSION_STRING << ", counters "
             << (st.count ? "on (the kernels' counting variants are timed)" : "off") << (quick ? ", --quick" : "") << "\n"
             << "rays per scene " << ray_count << ", seed " << seed << ", " << st.reps
-            << " timed repetitions per cell (median) after a warm-up on 1/8 of the rays\n";
+            << " timed repetitions per cell (median) after a warm-up on 1/8 of the rays, each after an untimed pass over 1/16\n";
 
   const auto start = Clock::now();
   std::vector<std::unique_ptr<BenchScene>> scenes;
