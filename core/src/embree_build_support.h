@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "pierce/bbox.h"
+#include "pierce/huge_page_allocator.h"
 
 namespace pierce::detail {
 
@@ -37,7 +38,7 @@ RTCBuildPrimitive build_primitive(const BBox<T>& b, std::uint32_t id) {
 
 // Arguments for a build over `prims` (ids = their indices) into `bvh` with Pierce's callbacks, at
 // medium quality; the caller sets branching factor and leaf sizes.
-inline RTCBuildArguments build_arguments(RTCBVH bvh, std::vector<RTCBuildPrimitive>& prims, float traversal_cost,
+inline RTCBuildArguments build_arguments(RTCBVH bvh, HugePageVector<RTCBuildPrimitive>& prims, float traversal_cost,
                                          RTCCreateNodeFunction create_node, RTCSetNodeChildrenFunction set_children,
                                          RTCSetNodeBoundsFunction set_bounds, RTCCreateLeafFunction create_leaf) {
   RTCBuildArguments args = rtcDefaultBuildArguments();

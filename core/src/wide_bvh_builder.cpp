@@ -68,9 +68,9 @@ struct TriRef {
 template <typename T>
 struct Writer {
   const Scene& scene;
-  const std::vector<TriRef>& refs;
+  const HugePageVector<TriRef>& refs;
   WideBvh<T>& out;
-  std::vector<std::uint8_t> seen;  // each primitive must be in exactly one leaf
+  HugePageVector<std::uint8_t> seen;  // each primitive must be in exactly one leaf
 
   // False where the tree is not one Pierce can take (a null child, an inner node without children).
   bool size(void* p) {
@@ -178,7 +178,8 @@ template <typename T>
 bool build_with_embree(const Scene& scene, const BvhBuildOptions& opts, WideBvh<T>& out) {
   const RTCDevice device = detail::builder_device();
   if (device == nullptr) return false;
-  std::vector<TriRef> refs;
+  // The build's arrays are in huge pages (huge_page_allocator.h): each is filled once, at once.
+  HugePageVector<TriRef> refs;
   refs.reserve(scene.triangle_count());
   for (std::uint32_t g = 0; g < scene.geometries().size(); ++g) {
     const Geometry& geo = scene.geometry(g);
@@ -194,7 +195,7 @@ bool build_with_embree(const Scene& scene, const BvhBuildOptions& opts, WideBvh<
     }
   }
   if (refs.empty()) return true;
-  std::vector<RTCBuildPrimitive> prims(refs.size());
+  HugePageVector<RTCBuildPrimitive> prims(refs.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, refs.size(), 4096), [&](const auto& range) {
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
       const Geometry& geo = scene.geometry(refs[i].geom);
@@ -218,8 +219,8 @@ bool build_with_embree(const Scene& scene, const BvhBuildOptions& opts, WideBvh<
   void* root = rtcBuildBVH(&args);
   bool ok = root != nullptr && rtcGetDeviceError(device) == RTC_ERROR_NONE;
   if (ok) {
-    std::vector<RTCBuildPrimitive>().swap(prims);  // Embree is done with them
-    Writer<T> w{scene, refs, out, std::vector<std::uint8_t>(refs.size(), 0)};
+    HugePageVector<RTCBuildPrimitive>().swap(prims);  // Embree is done with them
+    Writer<T> w{scene, refs, out, HugePageVector<std::uint8_t>(refs.size(), 0)};
     ok = w.write_all(root);
   }
   rtcReleaseBVH(bvh);

@@ -20,10 +20,8 @@ std::array<std::uint32_t, 3> welded(const Tri& t, const std::vector<std::uint32_
 }  // namespace
 
 std::vector<std::uint32_t> weld_by_position(const std::vector<Vec3d>& vertices) {
-  std::vector<std::uint32_t> rep(vertices.size());
-  PositionIndex first(vertices.size(), PositionIndex::Zeros::merged);
-  for (std::size_t i = 0; i < vertices.size(); ++i) rep[i] = first.find_or_insert(vertices, std::uint32_t(i));
-  return rep;
+  return first_equal_keys<std::array<std::uint64_t, 3>>(
+      vertices.size(), [&vertices](std::size_t i) { return position_key(vertices[i], PositionZeros::merged); });
 }
 
 EdgeStats edge_stats(const Geometry& g, const std::vector<std::uint32_t>& weld) {
@@ -75,8 +73,9 @@ std::vector<std::uint32_t> first_occurrence(const Geometry& g, const std::vector
   // valence long. Long buckets (fan centres) are sorted instead of compared pairwise.
   const std::size_t n = g.triangles.size();
   using Key = std::array<std::uint32_t, 3>;
-  std::vector<Key> keys(n);
-  std::vector<std::uint32_t> start(g.vertices.size() + 1, 0);
+  // The arrays in huge pages (huge_page_allocator.h): each is filled once, at once.
+  std::vector<Key> keys = huge_vector<Key>(n);
+  std::vector<std::uint32_t> start = huge_vector<std::uint32_t>(g.vertices.size() + 1, 0);
   for (std::size_t i = 0; i < n; ++i) {
     Key& w = keys[i];
     w = welded(g.triangles[i], weld);
@@ -84,12 +83,14 @@ std::vector<std::uint32_t> first_occurrence(const Geometry& g, const std::vector
     ++start[w[0] + 1];
   }
   for (std::size_t v = 0; v < g.vertices.size(); ++v) start[v + 1] += start[v];
-  std::vector<std::uint32_t> bucket(n);
+  std::vector<std::uint32_t> bucket = huge_vector<std::uint32_t>(n);
   {
-    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    std::vector<std::uint32_t> fill;
+    reserve_huge(fill, start.size() - 1);
+    fill.assign(start.begin(), start.end() - 1);
     for (std::size_t i = 0; i < n; ++i) bucket[fill[keys[i][0]]++] = std::uint32_t(i);
   }
-  std::vector<std::uint32_t> first(n);
+  std::vector<std::uint32_t> first = huge_vector<std::uint32_t>(n);
   constexpr std::size_t kPairwise = 64;
   std::vector<std::uint32_t> order;
   for (std::size_t v = 0; v < g.vertices.size(); ++v) {
@@ -123,14 +124,14 @@ Vec3d face_normal(const Geometry& g, std::size_t i) {
 }
 
 std::vector<Vec3d> vertex_normals(const Geometry& g, const std::vector<std::uint32_t>& weld) {
-  std::vector<Vec3d> acc(g.vertices.size());
+  std::vector<Vec3d> acc = huge_vector<Vec3d>(g.vertices.size());
   // Distinct welded triangles (any winding) contribute once; the first occurrence wins.
   const auto first = first_occurrence(g, weld);
   // Each corner adds the face normal weighted by its angle. The contributions (the acos is the
   // cost) are computed in parallel a block at a time and added in triangle order, so the sums
   // are the same bits on any thread count.
   constexpr std::size_t kBlock = 1 << 16;
-  std::vector<std::array<Vec3d, 3>> contrib(std::min(kBlock, g.triangles.size()));
+  std::vector<std::array<Vec3d, 3>> contrib = huge_vector<std::array<Vec3d, 3>>(std::min(kBlock, g.triangles.size()));
   for (std::size_t b0 = 0; b0 < g.triangles.size(); b0 += kBlock) {
     const std::size_t b1 = std::min(g.triangles.size(), b0 + kBlock);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(b0, b1, 1024), [&](const auto& r) {

@@ -9,6 +9,7 @@
 #include "pierce/analysis/bvh_query.h"
 #include "pierce/analysis/mesh_topology.h"
 #include "pierce/bvh_builder.h"
+#include "pierce/huge_page_allocator.h"
 #include "pierce/parallel_for_items.h"
 #include "thickness_internal.h"
 
@@ -125,9 +126,10 @@ SampleSet build_samples(const Scene& scene, const ThicknessOptions& opts, Thickn
     elements += opts.per == SampleAt::vertex ? scene.geometry(g).vertices.size() : scene.geometry(g).triangles.size();
     any_exact = any_exact || (opts.exact && opts.exact->covers(g));
   }
-  res.solid.reserve(elements), res.element.reserve(elements), res.point.reserve(elements);
-  res.normal.reserve(elements), res.thickness.reserve(elements), res.thin.reserve(elements);
-  res.status.reserve(elements), set.samples.reserve(elements);
+  // In huge pages (huge_page_allocator.h): the rows are filled once, at once.
+  reserve_huge(res.solid, elements), reserve_huge(res.element, elements), reserve_huge(res.point, elements);
+  reserve_huge(res.normal, elements), reserve_huge(res.thickness, elements), reserve_huge(res.thin, elements);
+  reserve_huge(res.status, elements), reserve_huge(set.samples, elements);
   for (std::uint32_t g : set.solids) {
     const Geometry& geo = scene.geometry(g);
     const auto weld = weld_by_position(geo.vertices);

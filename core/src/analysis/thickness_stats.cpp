@@ -2,6 +2,7 @@
 // samples (tessellation artefacts, no-exits and samples without normal are counted apart).
 #include <cmath>
 
+#include "pierce/huge_page_allocator.h"
 #include "thickness_internal.h"
 
 namespace pierce::analysis::detail {
@@ -33,6 +34,7 @@ void finish_statistics(const Scene& scene, const ThicknessOptions& opts, const S
     st.name = scene.geometry(set.solids[k]).name;
     st.exact = opts.exact && opts.exact->covers(st.geom);
     std::vector<double> values;
+    reserve_huge(values, rows.empty() ? set.ranges[k].second - set.ranges[k].first : rows[k].size());
     auto add = [&](std::size_t i) {
       ++st.elements;
       st.no_exit += res.status[i] == ThicknessStatus::no_exit;

@@ -13,6 +13,7 @@
 #include <system_error>
 
 #include "pierce/error.h"
+#include "pierce/huge_page_allocator.h"
 #include "pierce/vec3.h"
 
 namespace pierce::io {
@@ -20,8 +21,12 @@ namespace pierce::io {
 // Throws InputError unless `path` names an existing regular file.
 void require_regular_file(const std::string& path);
 
+// A file's bytes, in a buffer advised for huge pages and not zero-filled before the read: a model
+// of a few hundred megabytes is otherwise paged in twice, once by the fill and once by the read.
+using FileBytes = HugePageVector<char>;
+
 // Whole file as bytes. Throws InputError if it cannot be opened or is not a regular file.
-std::string read_file(const std::string& path);
+FileBytes read_file(const std::string& path);
 
 // File name without directory and extension ("dir/plates.obj" -> "plates").
 std::string file_stem(const std::string& path);

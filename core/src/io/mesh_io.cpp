@@ -37,11 +37,11 @@ void require_regular_file(const std::string& path) {
   if (!std::filesystem::is_regular_file(status)) fail(path, "cannot read: not a regular file");
 }
 
-std::string read_file(const std::string& path) {
+FileBytes read_file(const std::string& path) {
   require_regular_file(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, std::string("cannot open file (") + std::strerror(errno) + ")");
-  std::string data;
+  FileBytes data;
   in.seekg(0, std::ios::end);
   const std::streamoff size = in.tellg();
   if (size < 0) fail(path, "cannot read file");
@@ -60,7 +60,7 @@ std::vector<LoadedMesh> load_mesh_file(const std::string& path) {
   io::require_regular_file(path);
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  using Reader = std::vector<LoadedMesh> (*)(const std::string&, const std::string&);
+  using Reader = std::vector<LoadedMesh> (*)(const std::string&, std::string_view);
   Reader reader = nullptr;
   if (ext == ".stl") reader = io::read_stl;
   else if (ext == ".obj") reader = io::read_obj;
@@ -69,7 +69,8 @@ std::vector<LoadedMesh> load_mesh_file(const std::string& path) {
   else
     io::fail(path, "unknown model format " + (ext.empty() ? std::string("(no extension)") : io::quoted(ext)) +
                        " (expected .stl, .obj, .off or .ply)");
-  const std::string data = io::read_file(path);
+  const io::FileBytes bytes = io::read_file(path);
+  const std::string_view data(bytes.data(), bytes.size());
   if (io::trim(data).empty()) io::fail(path, "file is empty");
   std::vector<LoadedMesh> meshes = reader(path, data);
   std::size_t faces = 0;

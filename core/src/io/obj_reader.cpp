@@ -45,7 +45,7 @@ LoadedMesh make_mesh(Group& g, const std::vector<Vec3d>& vertices, std::vector<s
 
 }  // namespace
 
-std::vector<LoadedMesh> read_obj(const std::string& path, const std::string& data) {
+std::vector<LoadedMesh> read_obj(const std::string& path, std::string_view data) {
   std::vector<Vec3d> vertices;
   std::vector<Group> groups(1);
   groups[0].name = file_stem(path);

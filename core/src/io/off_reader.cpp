@@ -22,7 +22,7 @@ bool valid_header_keyword(std::string_view kw) {
 
 }  // namespace
 
-std::vector<LoadedMesh> read_off(const std::string& path, const std::string& data) {
+std::vector<LoadedMesh> read_off(const std::string& path, std::string_view data) {
   LineCursor lines(data);
   std::string_view line;
   // Next line with content, comments removed; false at end of file.
@@ -99,7 +99,7 @@ std::vector<LoadedMesh> read_off(const std::string& path, const std::string& dat
     }
     append_fan(poly.data(), poly.size(), m.triangles);
   }
-  return {std::move(m)};
+  return only_mesh(std::move(m));
 }
 
 }  // namespace pierce::io

@@ -104,7 +104,7 @@ class AsciiSource {
 
 class BinarySource {
  public:
-  BinarySource(const std::string& path, const std::string& data, std::size_t offset, bool big)
+  BinarySource(const std::string& path, std::string_view data, std::size_t offset, bool big)
       : path_(path), data_(data), pos_(offset), big_(big) {}
   Context ctx;
 
@@ -138,7 +138,7 @@ class BinarySource {
     return p;
   }
   const std::string& path_;
-  const std::string& data_;
+  std::string_view data_;
   std::size_t pos_, start_ = 0;
   bool big_;
 };
@@ -150,7 +150,7 @@ struct Header {
   std::size_t body_offset = 0;  // first byte after end_header
 };
 
-Header read_header(const std::string& path, const std::string& data) {
+Header read_header(const std::string& path, std::string_view data) {
   Header h;
   LineCursor lines(data);
   std::string_view line;
@@ -288,19 +288,19 @@ void read_body(Source& src, const Header& h, const Layout& L, LoadedMesh& m) {
 
 }  // namespace
 
-std::vector<LoadedMesh> read_ply(const std::string& path, const std::string& data) {
+std::vector<LoadedMesh> read_ply(const std::string& path, std::string_view data) {
   const Header h = read_header(path, data);
   const Layout L = find_layout(path, h);
   LoadedMesh m;
   m.name = file_stem(path);
   if (h.format == Format::ascii) {
-    AsciiSource src(path, std::string_view(data).substr(h.body_offset), h.lines);
+    AsciiSource src(path, data.substr(h.body_offset), h.lines);
     read_body(src, h, L, m);
   } else {
     BinarySource src(path, data, h.body_offset, h.format == Format::big);
     read_body(src, h, L, m);
   }
-  return {std::move(m)};
+  return only_mesh(std::move(m));
 }
 
 }  // namespace pierce::io

@@ -25,7 +25,8 @@ std::vector<std::string_view> split_fields(std::string_view line) {
 }
 
 std::vector<Ray> read_ray_csv(const std::string& path) {
-  const std::string data = io::read_file(path);
+  const io::FileBytes bytes = io::read_file(path);
+  const std::string_view data(bytes.data(), bytes.size());
   std::vector<Ray> rays;
   io::LineCursor lines(data);
   std::string_view line;

@@ -3,8 +3,14 @@
 // derives facing from the vertex order, as every STL consumer does. Corners with bit-identical
 // coordinates are welded into one vertex (first occurrence order), as ParaView's reader does:
 // the triangles and their order are the file's, so hits and prim ids do not change, and per-vertex
-// results are one per vertex of the surface rather than three per facet.
+// results are one per vertex of the surface rather than three per facet. A binary file is welded
+// in parallel (first_equal_keys), an ASCII one as it is parsed.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cstdint>
 
 #include "io_util.h"
@@ -18,6 +24,23 @@ namespace {
 constexpr std::size_t kHeaderBytes = 84;
 constexpr std::size_t kFacetBytes = 50;
 
+// The lowest corner index with a problem coordinate (coordinate_problem), or `corners` if none.
+template <class CornerAt>
+std::size_t first_bad_corner(std::size_t corners, const CornerAt& corner) {
+  std::atomic<std::size_t> bad{corners};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, corners, 1 << 15), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t c = r.begin(); c != r.end() && c < bad.load(std::memory_order_relaxed); ++c) {
+      const Vec3d p = corner(c);
+      if (!coordinate_problem(p.x) && !coordinate_problem(p.y) && !coordinate_problem(p.z)) continue;
+      std::size_t seen = bad.load(std::memory_order_relaxed);
+      while (c < seen && !bad.compare_exchange_weak(seen, c, std::memory_order_relaxed)) {
+      }
+      return;
+    }
+  });
+  return bad.load();
+}
+
 // The index of p among `vertices`, appended if it is new.
 std::uint32_t add_welded(std::vector<Vec3d>& vertices, PositionIndex& weld, const Vec3d& p) {
   const auto i = std::uint32_t(vertices.size());
@@ -27,14 +50,14 @@ std::uint32_t add_welded(std::vector<Vec3d>& vertices, PositionIndex& weld, cons
   return found;
 }
 
-bool starts_with_solid(const std::string& data) {
+bool starts_with_solid(std::string_view data) {
   const std::string_view s = trim(std::string_view(data).substr(0, 512));
   return s.substr(0, 5) == "solid" && (s.size() == 5 || is_space(s[5]) || s[5] == '\n');
 }
 
 // A binary file may start with "solid" too; the size check tells them apart, and an ASCII file
 // has no NUL or other control bytes early on.
-bool looks_ascii(const std::string& data) {
+bool looks_ascii(std::string_view data) {
   if (!starts_with_solid(data)) return false;
   if (data.size() >= kHeaderBytes) {
     const std::uint32_t n = load_scalar<std::uint32_t>(data.data() + 80, false);
@@ -48,7 +71,7 @@ bool looks_ascii(const std::string& data) {
   return true;
 }
 
-std::vector<LoadedMesh> read_binary(const std::string& path, const std::string& data) {
+std::vector<LoadedMesh> read_binary(const std::string& path, std::string_view data) {
   if (data.size() < kHeaderBytes)
     fail(path, "truncated binary STL: " + std::to_string(data.size()) + " bytes, the header alone needs 84");
   const std::uint32_t n = load_scalar<std::uint32_t>(data.data() + 80, false);
@@ -60,32 +83,63 @@ std::vector<LoadedMesh> read_binary(const std::string& path, const std::string& 
                    std::to_string(complete) + " at byte offset " +
                    std::to_string(kHeaderBytes + complete * kFacetBytes) + " is incomplete");
   }
+  // Corner c is corner c % 3 of facet c / 3, its floats widened to double exactly.
+  const std::size_t corners = 3 * std::size_t(n);
+  if (corners >= std::size_t(0xFFFFFFFFu))
+    fail(path, "binary STL with " + std::to_string(n) + " triangles: more corners than 32-bit vertex indices hold");
+  const char* const facets = data.data() + kHeaderBytes;
+  const auto corner_offset = [](std::size_t c) { return (c / 3) * kFacetBytes + 12 + 12 * (c % 3); };
+  const auto corner = [&](std::size_t c) {
+    const char* p = facets + corner_offset(c);
+    return Vec3d(load_scalar<float>(p, false), load_scalar<float>(p + 4, false), load_scalar<float>(p + 8, false));
+  };
+  if (const std::size_t bad = first_bad_corner(corners, corner); bad < corners) {
+    const Vec3d p = corner(bad);
+    const int a = coordinate_problem(p.x) ? 0 : (coordinate_problem(p.y) ? 1 : 2);
+    fail(path, "triangle " + std::to_string(bad / 3) + ", vertex " + std::to_string(bad % 3) + " (byte offset " +
+                   std::to_string(kHeaderBytes + corner_offset(bad) + 4 * std::size_t(a)) +
+                   "): " + coordinate_problem(p[std::size_t(a)]));
+  }
+  // Equal floats widen to equal doubles and only they do (no NaN is left), so the raw bits are the key.
+  const std::vector<std::uint32_t> first = first_equal_keys<std::array<std::uint32_t, 3>>(corners, [&](std::size_t c) {
+    const char* p = facets + corner_offset(c);
+    return std::array<std::uint32_t, 3>{load_scalar<std::uint32_t>(p, false), load_scalar<std::uint32_t>(p + 4, false),
+                                        load_scalar<std::uint32_t>(p + 8, false)};
+  });
+  // Vertices are numbered in order of first occurrence: count them per chunk, then number and
+  // store them chunk by chunk in parallel.
+  constexpr std::size_t kChunk = std::size_t(1) << 16;
+  const std::size_t chunks = (corners + kChunk - 1) / kChunk;
+  std::vector<std::uint32_t> chunk_start(chunks + 1, 0);
+  tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t k) {
+    std::uint32_t count = 0;
+    for (std::size_t c = k * kChunk, end = std::min(corners, c + kChunk); c < end; ++c) count += first[c] == c;
+    chunk_start[k + 1] = count;
+  });
+  for (std::size_t k = 0; k < chunks; ++k) chunk_start[k + 1] += chunk_start[k];
   LoadedMesh m;
   m.name = file_stem(path);
-  // A closed triangle mesh has about half as many vertices as triangles.
-  m.vertices.reserve(std::size_t(n) / 2 + 3);
-  m.triangles.reserve(n);
-  PositionIndex weld(std::size_t(n) / 2 + 3);
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const std::size_t base = kHeaderBytes + std::size_t(i) * kFacetBytes;
-    Tri tri;
-    for (int k = 0; k < 3; ++k) {
-      double c[3];
-      for (int a = 0; a < 3; ++a) {
-        const std::size_t off = base + 12 + 12 * k + 4 * a;
-        c[a] = load_scalar<float>(data.data() + off, false);
-        if (const char* p = coordinate_problem(c[a]))
-          fail(path, "triangle " + std::to_string(i) + ", vertex " + std::to_string(k) + " (byte offset " +
-                         std::to_string(off) + "): " + p);
-      }
-      tri[std::size_t(k)] = add_welded(m.vertices, weld, {c[0], c[1], c[2]});
+  reserve_huge(m.vertices, chunk_start[chunks]);
+  m.vertices.resize(chunk_start[chunks]);
+  HugePageVector<std::uint32_t> vertex_of(corners);  // for first occurrences only
+  tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t k) {
+    std::uint32_t v = chunk_start[k];
+    for (std::size_t c = k * kChunk, end = std::min(corners, c + kChunk); c < end; ++c) {
+      if (first[c] != c) continue;
+      m.vertices[v] = corner(c);
+      vertex_of[c] = v++;
     }
-    m.triangles.push_back(tri);
-  }
-  return {std::move(m)};
+  });
+  reserve_huge(m.triangles, n);
+  m.triangles.resize(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1 << 14), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i)
+      for (std::size_t k = 0; k < 3; ++k) m.triangles[i][k] = vertex_of[first[3 * i + k]];
+  });
+  return only_mesh(std::move(m));
 }
 
-std::vector<LoadedMesh> read_ascii(const std::string& path, const std::string& data) {
+std::vector<LoadedMesh> read_ascii(const std::string& path, std::string_view data) {
   TokenStream ts(data);
   std::string_view tok;
   auto expect = [&](std::string_view word) {
@@ -141,7 +195,7 @@ std::vector<LoadedMesh> read_ascii(const std::string& path, const std::string& d
 
 }  // namespace
 
-std::vector<LoadedMesh> read_stl(const std::string& path, const std::string& data) {
+std::vector<LoadedMesh> read_stl(const std::string& path, std::string_view data) {
   return looks_ascii(data) ? read_ascii(path, data) : read_binary(path, data);
 }
 
