@@ -16,6 +16,21 @@
 namespace pierce {
 
 template <typename T>
+struct TraversalRay;
+
+namespace detail {
+// TraversalRay::make's lookup tables: the largest axis by (ax > ay) * 4 + (ax > az) * 2 + (ay > az),
+// and kx, ky by kz * 2 + swap. Static, so a shared library reads them directly, not through the GOT
+// as it would the static members of a class template.
+static constexpr int kLargestAxis[8] = {2, 1, 2, 1, 2, 2, 0, 0};
+static constexpr int kShearX[6] = {1, 2, 2, 0, 0, 1}, kShearY[6] = {2, 1, 0, 2, 1, 0};
+
+// org, dir, zero and inv of tr, for TraversalRay::make (defined below it).
+template <typename T>
+void prepare_axes(const Ray& r, TraversalRay<T>& tr, T d[3], T inv[3], bool& finite);
+}  // namespace detail
+
+template <typename T>
 struct TraversalRay {
   Vec3<T> org, dir, inv;
   bool zero[3] = {false, false, false};  // direction component exactly zero
@@ -30,18 +45,16 @@ struct TraversalRay {
     TraversalRay tr;
     T d[3], inv[3];
     bool finite;  // origin and direction finite in T
-    prepare_axes(r, tr, d, inv, finite);
+    detail::prepare_axes(r, tr, d, inv, finite);
     const T ax = std::abs(d[0]), ay = std::abs(d[1]), az = std::abs(d[2]);
     // kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2), looked up rather than branched on
     // (random directions would mispredict it).
-    static constexpr int kLargest[8] = {2, 1, 2, 1, 2, 2, 0, 0};  // index (ax > ay) * 4 + (ax > az) * 2 + (ay > az)
-    tr.kz = kLargest[(ax > ay) * 4 + (ax > az) * 2 + (ay > az)];
+    tr.kz = detail::kLargestAxis[(ax > ay) * 4 + (ax > az) * 2 + (ay > az)];
     // kx, ky follow kz cyclically, swapped where dir[kz] < 0 to keep the winding, so det's sign is
     // the facing: kx = (kz + 1 + swap) % 3, ky = (kz + 2 - swap) % 3, by kz * 2 + swap.
-    static constexpr int kX[6] = {1, 2, 2, 0, 0, 1}, kY[6] = {2, 1, 0, 2, 1, 0};
     const int pick = tr.kz * 2 + (d[tr.kz] < T(0));
-    tr.kx = kX[pick];
-    tr.ky = kY[pick];
+    tr.kx = detail::kShearX[pick];
+    tr.ky = detail::kShearY[pick];
     const T dz = d[tr.kz];
     tr.sx = d[tr.kx] / dz;
     tr.sy = d[tr.ky] / dz;
@@ -60,48 +73,6 @@ struct TraversalRay {
     return tr;
   }
 
-  // org, dir, zero and inv of tr (inv 0 where the component is 0), the direction and its inverse
-  // as arrays, and whether origin and direction are finite in T.
-  static void prepare_axes(const Ray& r, TraversalRay& tr, T d[3], T inv[3], bool& finite) {
-#if defined(__SSE2__)
-    if constexpr (std::is_same_v<T, float>) {
-      // The same conversions, divisions and tests, four lanes at a time (lane 3 is padding). In
-      // callgrind (blob, first hit) make() fell from 202 to 181 instructions per ray.
-      const auto load = [](const Vec3d& v) {
-        return _mm_movelh_ps(_mm_cvtpd_ps(_mm_loadu_pd(&v.x)), _mm_cvtpd_ps(_mm_load_sd(&v.z)));
-      };
-      const __m128 o = load(r.org), dv = load(r.dir), one = _mm_set1_ps(1.0f);
-      const __m128 is_zero = _mm_cmpeq_ps(dv, _mm_setzero_ps());
-      // Divides by 1 where the component is zero, so no division by zero is made.
-      const __m128 q = _mm_div_ps(one, _mm_or_ps(_mm_and_ps(is_zero, one), _mm_andnot_ps(is_zero, dv)));
-      const __m128 abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff)),
-                   big = _mm_set1_ps(std::numeric_limits<float>::max());
-      const __m128 in_range = _mm_and_ps(_mm_cmple_ps(_mm_and_ps(o, abs_mask), big),
-                                         _mm_cmple_ps(_mm_and_ps(dv, abs_mask), big));
-      finite = (_mm_movemask_ps(in_range) & 7) == 7;
-      const int zero_bits = _mm_movemask_ps(is_zero);
-      alignas(16) float ob[4], db[4], ib[4];
-      _mm_store_ps(ob, o);
-      _mm_store_ps(db, dv);
-      _mm_store_ps(ib, _mm_andnot_ps(is_zero, q));
-      for (int a = 0; a < 3; ++a) d[a] = db[a], inv[a] = ib[a], tr.zero[a] = (zero_bits >> a & 1) != 0;
-      tr.org = {ob[0], ob[1], ob[2]};
-      tr.dir = {d[0], d[1], d[2]};
-      tr.inv = {inv[0], inv[1], inv[2]};
-      return;
-    }
-#endif
-    tr.org = Vec3<T>(r.org);
-    tr.dir = Vec3<T>(r.dir);
-    for (int a = 0; a < 3; ++a) {
-      d[a] = tr.dir[std::size_t(a)];
-      tr.zero[a] = d[a] == T(0);
-      inv[a] = tr.zero[a] ? T(0) : T(1) / d[a];
-    }
-    tr.inv = {inv[0], inv[1], inv[2]};
-    finite = all_finite(tr.org) && all_finite(tr.dir);
-  }
-
   bool valid() const { return ok; }
 
   // Monotone widening of a box's far distance: every decision "does the ray meet box B"
@@ -113,5 +84,52 @@ struct TraversalRay {
     return scaled + pad;
   }
 };
+
+namespace detail {
+
+// org, dir, zero and inv of tr (inv 0 where the component is 0), the direction and its inverse
+// as arrays, and whether origin and direction are finite in T.
+template <typename T>
+void prepare_axes(const Ray& r, TraversalRay<T>& tr, T d[3], T inv[3], bool& finite) {
+#if defined(__SSE2__)
+  if constexpr (std::is_same_v<T, float>) {
+    // The same conversions, divisions and tests, four lanes at a time (lane 3 is padding). In
+    // callgrind (blob, first hit) make() fell from 202 to 181 instructions per ray.
+    const auto load = [](const Vec3d& v) {
+      return _mm_movelh_ps(_mm_cvtpd_ps(_mm_loadu_pd(&v.x)), _mm_cvtpd_ps(_mm_load_sd(&v.z)));
+    };
+    const __m128 o = load(r.org), dv = load(r.dir), one = _mm_set1_ps(1.0f);
+    const __m128 is_zero = _mm_cmpeq_ps(dv, _mm_setzero_ps());
+    // Divides by 1 where the component is zero, so no division by zero is made.
+    const __m128 q = _mm_div_ps(one, _mm_or_ps(_mm_and_ps(is_zero, one), _mm_andnot_ps(is_zero, dv)));
+    const __m128 abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff)),
+                 big = _mm_set1_ps(std::numeric_limits<float>::max());
+    const __m128 in_range = _mm_and_ps(_mm_cmple_ps(_mm_and_ps(o, abs_mask), big),
+                                       _mm_cmple_ps(_mm_and_ps(dv, abs_mask), big));
+    finite = (_mm_movemask_ps(in_range) & 7) == 7;
+    const int zero_bits = _mm_movemask_ps(is_zero);
+    alignas(16) float ob[4], db[4], ib[4];
+    _mm_store_ps(ob, o);
+    _mm_store_ps(db, dv);
+    _mm_store_ps(ib, _mm_andnot_ps(is_zero, q));
+    for (int a = 0; a < 3; ++a) d[a] = db[a], inv[a] = ib[a], tr.zero[a] = (zero_bits >> a & 1) != 0;
+    tr.org = {ob[0], ob[1], ob[2]};
+    tr.dir = {d[0], d[1], d[2]};
+    tr.inv = {inv[0], inv[1], inv[2]};
+    return;
+  }
+#endif
+  tr.org = Vec3<T>(r.org);
+  tr.dir = Vec3<T>(r.dir);
+  for (int a = 0; a < 3; ++a) {
+    d[a] = tr.dir[std::size_t(a)];
+    tr.zero[a] = d[a] == T(0);
+    inv[a] = tr.zero[a] ? T(0) : T(1) / d[a];
+  }
+  tr.inv = {inv[0], inv[1], inv[2]};
+  finite = all_finite(tr.org) && all_finite(tr.dir);
+}
+
+}  // namespace detail
 
 }  // namespace pierce

@@ -387,16 +387,9 @@ inline HitKey order_key(const TriBlock<T>& b, int lane, const TriangleHit<T>& th
 // The hit record for a triangle of a leaf block; geometric normal from the input's corners.
 template <typename T>
 inline Hit make_hit(const TriBlock<T>& b, int lane, const TriangleHit<T>& th) {
-  Hit h;
-  h.t = double(th.t);
-  h.geom = b.geom[lane];
-  h.prim = b.prim[lane];
-  h.enter = th.enter;
-  h.u = float(th.u);
-  h.v = float(th.v);
   const Vec3<T> v0 = b.input_corner(0, lane);
-  h.ng = Vec3f(cross(b.input_corner(1, lane) - v0, b.input_corner(2, lane) - v0));
-  return h;
+  return hit_of(order_key(b, lane, th), float(th.u), float(th.v),
+                Vec3f(cross(b.input_corner(1, lane) - v0, b.input_corner(2, lane) - v0)));
 }
 
 }  // namespace pierce

@@ -69,7 +69,7 @@ std::vector<LoadedMesh> read_off(const std::string& path, std::string_view data)
 
   LoadedMesh m;
   m.name = file_stem(path);
-  m.vertices.reserve(std::size_t(nv));
+  reserve_huge(m.vertices, std::size_t(nv));
   for (std::int64_t i = 0; i < nv; ++i) {
     if (!next_content(tokens))
       fail_at_line(path, lines.line(), "unexpected end of file: expected " + std::to_string(nv) +
@@ -77,7 +77,7 @@ std::vector<LoadedMesh> read_off(const std::string& path, std::string_view data)
     m.vertices.push_back(parse_point(tokens, path, lines.line(), "vertex"));
   }
   std::vector<std::uint32_t> poly;
-  m.triangles.reserve(std::size_t(nf));
+  reserve_huge(m.triangles, std::size_t(nf));
   for (std::int64_t f = 0; f < nf; ++f) {
     if (!next_content(tokens))
       fail_at_line(path, lines.line(), "unexpected end of file: expected " + std::to_string(nf) + " faces, found " +

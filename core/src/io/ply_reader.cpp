@@ -248,8 +248,8 @@ void read_body(Source& src, const Header& h, const Layout& L, LoadedMesh& m) {
     const Element& el = h.elements[e];
     src.ctx.element = &el.name;
     const bool is_vertex = int(e) == L.vertex, is_face = int(e) == L.face;
-    if (is_vertex) m.vertices.reserve(std::size_t(el.count));
-    if (is_face) m.triangles.reserve(std::size_t(el.count));
+    if (is_vertex) reserve_huge(m.vertices, std::size_t(el.count));
+    if (is_face) reserve_huge(m.triangles, std::size_t(el.count));
     for (std::uint64_t i = 0; i < el.count; ++i) {
       src.ctx.index = i;
       if constexpr (requires { src.mark(); }) src.mark();

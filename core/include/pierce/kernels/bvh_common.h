@@ -10,23 +10,15 @@
 
 namespace pierce {
 
-template <typename T>
-inline Hit make_hit(const Triangle<T>& tri, const TriangleHit<T>& th) {
-  Hit h;
-  h.t = double(th.t);
-  h.geom = tri.geom;
-  h.prim = tri.prim;
-  h.u = float(th.u);
-  h.v = float(th.v);
-  h.ng = Vec3f(cross(tri.v1 - tri.v0, tri.v2 - tri.v0));
-  h.enter = th.enter;
-  return h;
-}
-
 // Hit identity for ordering without the full record: everything HitOrder looks at.
 template <typename T>
 inline HitKey order_key(const Triangle<T>& tri, const TriangleHit<T>& th) {
   return {double(th.t), tri.geom, tri.prim, th.enter};
+}
+
+template <typename T>
+inline Hit make_hit(const Triangle<T>& tri, const TriangleHit<T>& th) {
+  return hit_of(order_key(tri, th), float(th.u), float(th.v), Vec3f(cross(tri.v1 - tri.v0, tri.v2 - tri.v0)));
 }
 
 }  // namespace pierce
