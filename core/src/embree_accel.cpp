@@ -3,17 +3,13 @@
 #include "pierce/kernels/embree_query.h"
 
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
 namespace pierce {
 
 namespace {
-
-void check(RTCDevice device, const char* what) {
-  const RTCError e = rtcGetDeviceError(device);
-  if (e != RTC_ERROR_NONE) throw std::runtime_error(std::string("Embree error ") + std::to_string(int(e)) + " in " + what);
-}
 
 struct BoundsData {
   const HugePageVector<Triangle<float>>* tris;
@@ -54,37 +50,73 @@ void attach_native_triangles(RTCDevice device, RTCScene target, const Scene& sce
   }
 }
 
-EmbreeAccel::EmbreeAccel(const Scene& scene, const HugePageVector<Triangle<float>>& tris)
-    : scene_(&scene), tris_(&tris) {
+EmbreeAccel::EmbreeAccel(const Scene& scene, TriangleSource tris) : scene_(&scene), tris_source_(std::move(tris)) {
   device_ = rtcNewDevice("threads=0");
   if (!device_) throw std::runtime_error("Embree: rtcNewDevice failed");
   max_abs_ = scene.bounds().max_abs_coord();
   // 2^-14 of the scene's magnitude: well above Embree's rounding in its box test for origins
   // rebased near the scene, negligible for traversal cost.
   pad_ = float(std::ldexp(std::max(max_abs_, 1e-30), -14));
+}
 
-  exact_ = rtcNewScene(device_);
-  rtcSetSceneBuildQuality(exact_, RTC_BUILD_QUALITY_HIGH);
+RTCScene EmbreeAccel::exact() const {
+  std::call_once(exact_once_, [this] { build_exact(); });
+  return exact_;
+}
+
+const HugePageVector<Triangle<float>>& EmbreeAccel::tris() const {
+  std::call_once(exact_once_, [this] { build_exact(); });
+  return *tris_;
+}
+
+RTCScene EmbreeAccel::native() const {
+  std::call_once(native_once_, [this] { build_native(); });
+  return native_;
+}
+
+// A failed build leaves nothing behind (std::call_once runs again after an exception, afresh).
+void EmbreeAccel::build_exact() const {
+  const HugePageVector<Triangle<float>>& tris = tris_source_();
+  RTCScene scene = rtcNewScene(device_);
+  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+  std::unique_ptr<BoundsData> data;
   if (!tris.empty()) {
     RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
     rtcSetGeometryUserPrimitiveCount(g, unsigned(tris.size()));
-    auto* data = new BoundsData{&tris, pad_};
-    rtcSetGeometryUserData(g, data);
+    data = std::make_unique<BoundsData>(BoundsData{&tris, pad_});
+    rtcSetGeometryUserData(g, data.get());
     rtcSetGeometryBoundsFunction(g, bounds_cb, nullptr);
     rtcSetGeometryOccludedFunction(g, occluded_noop);
     rtcSetGeometryIntersectFunction(g, detail::embree_exact_intersect);
-    bounds_data_ = data;
     rtcCommitGeometry(g);
-    rtcAttachGeometry(exact_, g);
+    rtcAttachGeometry(scene, g);
     rtcReleaseGeometry(g);
   }
-  rtcCommitScene(exact_);
-  check(device_, "building the exact scene");
+  rtcCommitScene(scene);
+  committed(scene, "building the exact scene");
+  exact_ = scene;
+  tris_ = &tris;
+  bounds_data_ = data.release();
+}
 
-  native_ = rtcNewScene(device_);
-  attach_native_triangles(device_, native_, scene, DegenerateTriangles::leave_out);
-  rtcCommitScene(native_);
-  check(device_, "building the native scene");
+void EmbreeAccel::build_native() const {
+  RTCScene scene = rtcNewScene(device_);
+  try {
+    attach_native_triangles(device_, scene, *scene_, DegenerateTriangles::leave_out);
+  } catch (...) {
+    rtcReleaseScene(scene);
+    throw;
+  }
+  rtcCommitScene(scene);
+  committed(scene, "building the native scene");
+  native_ = scene;
+}
+
+void EmbreeAccel::committed(RTCScene scene, const char* what) const {
+  const RTCError e = rtcGetDeviceError(device_);
+  if (e == RTC_ERROR_NONE) return;
+  rtcReleaseScene(scene);
+  throw std::runtime_error(std::string("Embree error ") + std::to_string(int(e)) + " in " + what);
 }
 
 EmbreeAccel::~EmbreeAccel() {

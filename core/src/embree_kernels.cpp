@@ -84,7 +84,7 @@ RTCRayHit native_rayhit(const Ray& ray, float tnear) { return native_rayhit(ray.
 }  // namespace
 
 EmbreeExactBase::EmbreeExactBase(const EmbreeAccel& acc, HitOrder order, EmbreeQuery::Mode mode, bool count)
-    : acc_(&acc), count_(count) {
+    : acc_(&acc), scene_(acc.exact()), count_(count) {
   q_.mode = mode;
   q_.order = order;
   q_.tris = &acc.tris();
@@ -95,7 +95,7 @@ bool EmbreeExactBase::setup(const Ray& ray) {
   q_.have_last = false;
   q_.best = Hit{};
   live_ = false;
-  if (acc_->tris().empty() || !q_.ray.valid() || empty_range(ray)) return false;
+  if (q_.tris->empty() || !q_.ray.valid() || empty_range(ray)) return false;
   // Where the ray meets the (padded) scene box, in double: the Embree origin is moved there
   // so Embree's single-precision box test works near the scene, whatever the user's origin.
   const BBoxd& b = acc_->scene().bounds();
@@ -134,7 +134,7 @@ void EmbreeExactBase::trace(double lo, double hi) {
   // Pointers into this object are set per query, not once: kernels are values and may have moved.
   q_.counters = count_ ? &counters : nullptr;
   rtcInitIntersectContext(&q_.ctx);
-  rtcIntersect1(acc_->exact(), &q_.ctx, &rh);
+  rtcIntersect1(scene_, &q_.ctx, &rh);
   if (count_) ++counters.traversal_steps;
 }
 
@@ -200,7 +200,7 @@ bool EmbreeNodeCullKernel::next(Hit& out) {
 }
 
 EpsilonKernel::EpsilonKernel(const EmbreeAccel& acc, double epsilon_rel, bool count)
-    : acc_(&acc), eps_(epsilon_rel * acc.scene().scale()), count_(count) {}
+    : scene_(acc.native()), eps_(epsilon_rel * acc.scene().scale()), count_(count) {}
 
 void EpsilonKernel::begin(const Ray& ray, std::size_t) {
   ray_ = ray;
@@ -221,7 +221,7 @@ bool EpsilonKernel::next(Hit& out) {
   RTCRayHit rh = native_rayhit(ray_, tnear_);
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
-  rtcIntersect1(acc_->native(), &ctx, &rh);
+  rtcIntersect1(scene_, &ctx, &rh);
   if (count_) ++counters.traversal_steps;
   const float t = rh.ray.tfar;
   // No hit, or a distance beyond float range (tiny direction): not representable. Degenerate

@@ -103,7 +103,11 @@ const Bvhf& Accel::bvh() const {
 }
 
 const EmbreeAccel& Accel::embree() const {
-  std::call_once(lazy_->embree_once, [this] { lazy_->embree = std::make_unique<EmbreeAccel>(*scene_, bvh().tris); });
+  std::call_once(lazy_->embree_once, [this] {
+    // The float BVH is built only if an exact Embree kernel asks for the exact scene.
+    lazy_->embree = std::make_unique<EmbreeAccel>(
+        *scene_, [this]() -> const HugePageVector<Triangle<float>>& { return bvh().tris; });
+  });
   return *lazy_->embree;
 }
 

@@ -127,5 +127,22 @@ TEST(Epsilon, NeverReportsDegenerateTriangles) {
   }
 }
 
+// A kernel builds only what it uses (issue 12): the epsilon kernel traces Embree's native triangles
+// and needs neither the exact Embree scene nor the float binary BVH whose triangles that scene
+// holds; an exact Embree kernel builds both. Accel::memory_bytes counts the binary BVH once built.
+TEST(Epsilon, BuildsNeitherTheExactSceneNorItsBvh) {
+  const auto w = make_world({gen::blob(3, 5)});
+  const std::size_t wide_only = w->accel.memory_bytes();
+  const auto rays = random_rays(w->scene.bounds(), 20, 3);
+  HitIterator eps(w->accel, KernelKind::epsilon);
+  std::size_t hits = 0;
+  for (const Ray& r : rays) hits += kernel_hits(eps, r).size();
+  EXPECT_GT(hits, 0u);
+  EXPECT_EQ(w->accel.memory_bytes(), wide_only);
+  HitIterator exact(w->accel, KernelKind::embree_restart);
+  for (const Ray& r : rays) kernel_hits(exact, r);
+  EXPECT_GT(w->accel.memory_bytes(), wide_only);
+}
+
 }  // namespace
 }  // namespace pierce::test

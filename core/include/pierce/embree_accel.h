@@ -8,7 +8,9 @@
 //    epsilon baseline and as the first-hit speed reference.
 #include <embree3/rtcore.h>
 
+#include <functional>
 #include <memory>
+#include <mutex>
 
 #include "pierce/bvh.h"
 #include "pierce/scene.h"
@@ -26,30 +28,42 @@ enum class DegenerateTriangles { keep, leave_out };
 // Does not commit `target`.
 void attach_native_triangles(RTCDevice device, RTCScene target, const Scene& scene, DegenerateTriangles degenerate);
 
+// Each scene is built when first asked for (thread-safe), so a kernel builds only what it uses: the
+// epsilon kernel neither the exact scene nor the float BVH whose triangles that scene holds.
+// Kernels ask once, when they are made, and keep the handle.
 class EmbreeAccel {
  public:
-  // `tris` must outlive this object (it is the float BVH's triangle array).
-  EmbreeAccel(const Scene& scene, const HugePageVector<Triangle<float>>& tris);
+  // Gives the float BVH's triangle array, which must outlive this object; called once, when the
+  // exact scene is first asked for.
+  using TriangleSource = std::function<const HugePageVector<Triangle<float>>&()>;
+  EmbreeAccel(const Scene& scene, TriangleSource tris);
   ~EmbreeAccel();
   EmbreeAccel(const EmbreeAccel&) = delete;
   EmbreeAccel& operator=(const EmbreeAccel&) = delete;
 
-  RTCScene exact() const { return exact_; }
-  RTCScene native() const { return native_; }
+  RTCScene exact() const;
+  RTCScene native() const;
   const Scene& scene() const { return *scene_; }
-  const HugePageVector<Triangle<float>>& tris() const { return *tris_; }
+  // The exact scene's primitives (building that scene if it is not built yet).
+  const HugePageVector<Triangle<float>>& tris() const;
   double scene_max_abs() const { return max_abs_; }
   float box_pad() const { return pad_; }
 
  private:
+  void build_exact() const;
+  void build_native() const;
+  void committed(RTCScene scene, const char* what) const;
+
   const Scene* scene_;
-  const HugePageVector<Triangle<float>>* tris_;
+  TriangleSource tris_source_;
   double max_abs_ = 0;
   float pad_ = 0;
   RTCDevice device_ = nullptr;
-  RTCScene exact_ = nullptr;
-  RTCScene native_ = nullptr;
-  void* bounds_data_ = nullptr;
+  mutable std::once_flag exact_once_, native_once_;
+  mutable const HugePageVector<Triangle<float>>* tris_ = nullptr;
+  mutable RTCScene exact_ = nullptr;
+  mutable RTCScene native_ = nullptr;
+  mutable void* bounds_data_ = nullptr;
 };
 
 }  // namespace pierce

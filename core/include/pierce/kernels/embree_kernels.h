@@ -23,6 +23,7 @@ class EmbreeExactBase {
   void trace(double lo, double hi);
 
   const EmbreeAccel* acc_;
+  RTCScene scene_;  // acc_->exact(), asked for once
   EmbreeQuery q_;
   Vec3d org_, dir_;
   bool live_ = false;
@@ -75,7 +76,7 @@ class EpsilonKernel {
   Counters counters;  // kept only when constructed with count = true
 
  private:
-  const EmbreeAccel* acc_;
+  RTCScene scene_;  // the accel's native(), asked for once
   double eps_;
   bool count_;
   Ray ray_;
