@@ -5,10 +5,13 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <bit>
+#include <limits>
 #include <map>
 #include <random>
 
 #include "mesh_writers.h"
+#include "pierce/error.h"
 #include "pierce/io/mesh_io.h"
 #include "pierce/position_index.h"
 #include "temp_dir.h"
@@ -97,6 +100,27 @@ TEST_F(BinaryStlWeld, VerticesInFirstOccurrenceOrder) {
     for (std::size_t a = 0; a < 3; ++a)
       ASSERT_EQ(std::bit_cast<std::uint64_t>(loaded[0].vertices[i][a]), std::bit_cast<std::uint64_t>(vertices[i][a]))
           << "vertex " << i;  // bits: -0 and +0 stay apart
+}
+
+// The binary reader checks the corners in parallel and still names the first bad one in the file.
+TEST_F(BinaryStlWeld, NamesTheFirstBadCorner) {
+  PolyMesh m;
+  for (std::uint32_t i = 0; i < 200000; ++i) {
+    m.vertices.push_back({double(i % 97), double(i % 89), double(i % 83)});
+    if (i >= 2) m.faces.push_back({i - 2, i - 1, i});
+  }
+  m.vertices[150001].z = std::numeric_limits<double>::infinity();  // first in triangle 149999, corner 2
+  m.vertices[190000].x = std::numeric_limits<double>::quiet_NaN();
+  write_text(file("bad.stl"), stl_binary_data(m));
+  try {
+    load_mesh_file(file("bad.stl"));
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    const std::string offset = std::to_string(84 + 149999 * 50 + 12 + 12 * 2 + 8);
+    EXPECT_NE(std::string(e.what()).find("triangle 149999, vertex 2 (byte offset " + offset + "): infinite"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
