@@ -24,15 +24,18 @@ namespace pierce {
 enum class PositionZeros { distinct, merged };  // merged: -0 and +0 are the same coordinate
 
 namespace detail {
-
 inline std::uint64_t coordinate_bits(double v, PositionZeros zeros) {
   return std::bit_cast<std::uint64_t>(zeros == PositionZeros::merged && v == 0.0 ? 0.0 : v);
 }
-inline bool same_position(const Vec3d& a, const Vec3d& b, PositionZeros zeros) {
-  return coordinate_bits(a.x, zeros) == coordinate_bits(b.x, zeros) &&
-         coordinate_bits(a.y, zeros) == coordinate_bits(b.y, zeros) &&
-         coordinate_bits(a.z, zeros) == coordinate_bits(b.z, zeros);
+}  // namespace detail
+
+// The bits that decide whether two positions are equal (PositionIndex's test, first_equal_keys' key).
+inline std::array<std::uint64_t, 3> position_key(const Vec3d& p, PositionZeros zeros) {
+  return {detail::coordinate_bits(p.x, zeros), detail::coordinate_bits(p.y, zeros), detail::coordinate_bits(p.z, zeros)};
 }
+
+namespace detail {
+
 // A hash of three coordinates' bits.
 template <class U>
 std::uint64_t key_hash(const std::array<U, 3>& k) {
@@ -40,10 +43,6 @@ std::uint64_t key_hash(const std::array<U, 3>& k) {
   h = (h ^ (h >> 29) ^ std::uint64_t(k[1])) * 0xBF58476D1CE4E5B9ull;
   h = (h ^ (h >> 32) ^ std::uint64_t(k[2])) * 0x94D049BB133111EBull;
   return h ^ (h >> 31);
-}
-inline std::uint64_t position_hash(const Vec3d& p, PositionZeros zeros) {
-  return key_hash(std::array<std::uint64_t, 3>{coordinate_bits(p.x, zeros), coordinate_bits(p.y, zeros),
-                                               coordinate_bits(p.z, zeros)});
 }
 
 inline constexpr std::uint32_t kNoPosition = 0xFFFFFFFFu;
@@ -53,15 +52,15 @@ inline constexpr std::uint32_t kNoPosition = 0xFFFFFFFFu;
 template <class PositionAt>
 std::uint32_t find_or_insert_position(std::vector<std::uint32_t>& slots, const PositionAt& at, std::uint32_t i,
                                       PositionZeros zeros) {
-  const Vec3d p = at(i);
+  const std::array<std::uint64_t, 3> key = position_key(at(i), zeros);
   const std::size_t mask = slots.size() - 1;
-  for (std::size_t s = std::size_t(position_hash(p, zeros)) & mask;; s = (s + 1) & mask) {
+  for (std::size_t s = std::size_t(key_hash(key)) & mask;; s = (s + 1) & mask) {
     const std::uint32_t k = slots[s];
     if (k == kNoPosition) {
       slots[s] = i;
       return i;
     }
-    if (same_position(at(k), p, zeros)) return k;
+    if (position_key(at(k), zeros) == key) return k;
   }
 }
 
@@ -95,7 +94,7 @@ class PositionIndex {
     const std::size_t mask = slots_.size() - 1;
     for (const std::uint32_t k : old) {
       if (k == detail::kNoPosition) continue;
-      std::size_t s = std::size_t(detail::position_hash(positions[k], zeros_)) & mask;
+      std::size_t s = std::size_t(detail::key_hash(position_key(positions[k], zeros_))) & mask;
       while (slots_[s] != detail::kNoPosition) s = (s + 1) & mask;
       slots_[s] = k;
     }
@@ -105,11 +104,6 @@ class PositionIndex {
   std::vector<std::uint32_t> slots_;
   std::size_t size_ = 0;
 };
-
-// The bits that decide whether two positions are equal, as first_equal_keys() takes them.
-inline std::array<std::uint64_t, 3> position_key(const Vec3d& p, PositionZeros zeros) {
-  return {detail::coordinate_bits(p.x, zeros), detail::coordinate_bits(p.y, zeros), detail::coordinate_bits(p.z, zeros)};
-}
 
 // For every i < n: the first j <= i with key_at(j) == key_at(i), the answer PositionIndex gives for
 // i = 0, 1, ... n-1. A key is the three coordinates' bits (std::array<U, 3>: position_key(), or a

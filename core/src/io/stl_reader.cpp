@@ -89,9 +89,14 @@ std::vector<LoadedMesh> read_binary(const std::string& path, std::string_view da
     fail(path, "binary STL with " + std::to_string(n) + " triangles: more corners than 32-bit vertex indices hold");
   const char* const facets = data.data() + kHeaderBytes;
   const auto corner_offset = [](std::size_t c) { return (c / 3) * kFacetBytes + 12 + 12 * (c % 3); };
-  const auto corner = [&](std::size_t c) {
+  // Corner c's three coordinates as T (float, or its bits as std::uint32_t).
+  const auto corner_as = [&]<typename T>(std::size_t c) {
     const char* p = facets + corner_offset(c);
-    return Vec3d(load_scalar<float>(p, false), load_scalar<float>(p + 4, false), load_scalar<float>(p + 8, false));
+    return std::array<T, 3>{load_scalar<T>(p, false), load_scalar<T>(p + 4, false), load_scalar<T>(p + 8, false)};
+  };
+  const auto corner = [&](std::size_t c) {
+    const std::array<float, 3> f = corner_as.template operator()<float>(c);
+    return Vec3d(f[0], f[1], f[2]);
   };
   if (const std::size_t bad = first_bad_corner(corners, corner); bad < corners) {
     const Vec3d p = corner(bad);
@@ -101,11 +106,8 @@ std::vector<LoadedMesh> read_binary(const std::string& path, std::string_view da
                    "): " + coordinate_problem(p[std::size_t(a)]));
   }
   // Equal floats widen to equal doubles and only they do (no NaN is left), so the raw bits are the key.
-  const std::vector<std::uint32_t> first = first_equal_keys<std::array<std::uint32_t, 3>>(corners, [&](std::size_t c) {
-    const char* p = facets + corner_offset(c);
-    return std::array<std::uint32_t, 3>{load_scalar<std::uint32_t>(p, false), load_scalar<std::uint32_t>(p + 4, false),
-                                        load_scalar<std::uint32_t>(p + 8, false)};
-  });
+  const std::vector<std::uint32_t> first = first_equal_keys<std::array<std::uint32_t, 3>>(
+      corners, [&](std::size_t c) { return corner_as.template operator()<std::uint32_t>(c); });
   // Vertices are numbered in order of first occurrence: count them per chunk, then number and
   // store them chunk by chunk in parallel.
   constexpr std::size_t kChunk = std::size_t(1) << 16;
