@@ -31,6 +31,8 @@
 
 namespace pierce::simd {
 
+#define PIERCE_AVX512_TARGET "avx2,avx512f,avx512vl,avx512bw,avx512dq,bmi,bmi2"
+
 // Octant of a direction: bit a set where component a is negative (WideNode::order's index).
 template <typename T>
 inline int octant(const TraversalRay<T>& r) {
@@ -95,6 +97,32 @@ struct ScalarOps {
 
 constexpr float kWidenUp = 1.0f + 1.0f / float(1 << 20);  // TraversalRay::widen's factors, exact in float
 constexpr float kWidenDown = 1.0f - 1.0f / float(1 << 20);
+
+// box_overlaps() for eight boxes, decision for decision: tn <= wf && tn <= hi && wf >= lo is
+// max(lo, tn) <= min(hi, wf), one compare after two independent steps instead of three dependent
+// ones. They agree because lo <= hi (seed() starts no traversal otherwise, and the policies only
+// narrow hi down to hits at or after lo; were it not so, no triangle could be accepted either) and
+// no operand is NaN: lo and hi are not, tn and tf never are (slabs() starts from -inf and +inf
+// and keeps the non-NaN operand), and where wf is NaN (an infinite far distance plus an infinite
+// pad) min(hi, wf) passes the NaN on, so the compare fails as the scalar one does.
+__attribute__((target("avx2"))) inline __m256 in_range(__m256 tn, __m256 wf, float lo, float hi) {
+  return _mm256_cmp_ps(_mm256_max_ps(_mm256_set1_ps(lo), tn), _mm256_min_ps(_mm256_set1_ps(hi), wf), _CMP_LE_OQ);
+}
+__attribute__((target(PIERCE_AVX512_TARGET))) inline __mmask8 in_range(__mmask8 lanes, __m256 tn, __m256 wf,
+                                                                         float lo, float hi) {
+  return _mm256_mask_cmp_ps_mask(lanes, _mm256_max_ps(_mm256_set1_ps(lo), tn), _mm256_min_ps(_mm256_set1_ps(hi), wf),
+                                 _CMP_LE_OQ);
+}
+
+// TraversalRay::widen for eight far distances, bit for bit: tf * (1 + k) for tf >= 0 and tf * (1 - k)
+// below is the larger of the two products (rounding is monotone), so a max replaces the sign test
+// and the blend (one dependent step less on the way to the next node). A far distance is never
+// NaN: slabs() starts its min from +inf and keeps the non-NaN operand.
+__attribute__((target("avx2"))) inline __m256 widen(__m256 tf, __m256 pad) {
+  return _mm256_add_ps(_mm256_max_ps(_mm256_mul_ps(tf, _mm256_set1_ps(kWidenDown)),
+                                     _mm256_mul_ps(tf, _mm256_set1_ps(kWidenUp))),
+                       pad);
+}
 
 // Lane k of the result: the slot ranked k-th in `order` (WideNode::order).
 __attribute__((target("avx2"))) inline __m256i rank_slots(std::uint32_t order) {
@@ -271,9 +299,7 @@ struct SimdRay {
       tn = _mm256_max_ps(t0, tn);
       tf = _mm256_min_ps(t1, tf);
     }
-    const __m256 up = _mm256_mul_ps(tf, _mm256_set1_ps(kWidenUp));
-    const __m256 down = _mm256_mul_ps(tf, _mm256_set1_ps(kWidenDown));
-    const __m256 wf = _mm256_add_ps(_mm256_blendv_ps(down, up, _mm256_cmp_ps(tf, zero_v, _CMP_GE_OQ)), pad);
+    const __m256 wf = widen(tf, pad);
     const __m256 t_hi = _mm256_blendv_ps(tn, tf, _mm256_cmp_ps(tf, tn, _CMP_GT_OQ));
     __m256 tc = _mm256_blendv_ps(t, t_hi, _mm256_cmp_ps(t, t_hi, _CMP_GT_OQ));
     tc = _mm256_blendv_ps(tc, tn, _mm256_cmp_ps(t, tn, _CMP_LT_OQ));
@@ -325,13 +351,8 @@ struct Avx2Ops {
                                                    __m256& tn) const {
     __m256 tf, outside;
     ray.slabs(n, tn, tf, outside);
-    const __m256 up = _mm256_mul_ps(tf, _mm256_set1_ps(kWidenUp));
-    const __m256 down = _mm256_mul_ps(tf, _mm256_set1_ps(kWidenDown));
-    const __m256 scaled = _mm256_blendv_ps(down, up, _mm256_cmp_ps(tf, _mm256_setzero_ps(), _CMP_GE_OQ));
-    const __m256 wf = _mm256_add_ps(scaled, ray.pad);
-    const __m256 ok = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(tn, wf, _CMP_LE_OQ),
-                                                  _mm256_cmp_ps(tn, _mm256_set1_ps(hi), _CMP_LE_OQ)),
-                                    _mm256_cmp_ps(wf, _mm256_set1_ps(lo), _CMP_GE_OQ));
+    const __m256 wf = widen(tf, ray.pad);
+    const __m256 ok = in_range(tn, wf, lo, hi);
     const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
     const __m256i valid = _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(order >> 24)), bits), bits);
     return _mm256_and_ps(_mm256_andnot_ps(outside, ok), _mm256_castsi256_ps(valid));
@@ -356,17 +377,23 @@ struct Avx2Ops {
     const std::uint32_t order = n.order[ray.oct];
     __m256 tn;
     const __m256 pass = slot_hits(n, order, lo, hi, tn);
+    const auto slots = std::uint32_t(_mm256_movemask_ps(pass));
+    if (slots == 0) return 0;
+    if ((slots & (slots - 1)) == 0) {  // one child passes (most nodes of a first-hit ray): nothing to store
+      const int s = __builtin_ctz(slots);
+      nearest = {_mm_cvtss_f32(_mm256_castps256_ps128(_mm256_permutevar8x32_ps(tn, _mm256_set1_epi32(s)))),
+                 n.child[s]};
+      return 1;
+    }
     __m256i child = _mm256_load_si256(reinterpret_cast<const __m256i*>(n.child));
     std::uint32_t mask;
     if constexpr (kRanked) {
       const __m256i rank = rank_slots_far_to_near(order);
       mask = std::uint32_t(_mm256_movemask_ps(_mm256_permutevar8x32_ps(pass, rank)));
-      if (mask == 0) return 0;
       tn = _mm256_permutevar8x32_ps(tn, rank);
       child = _mm256_permutevar8x32_epi32(child, rank);
     } else {
-      mask = std::uint32_t(_mm256_movemask_ps(pass));
-      if (mask == 0) return 0;
+      mask = slots;
     }
     nearest = lane_entry(tn, child, 31 - __builtin_clz(mask));
     __m256i first, second;
@@ -386,7 +413,6 @@ struct Avx2Ops {
   }
 };
 
-#define PIERCE_AVX512_TARGET "avx2,avx512f,avx512vl,avx512bw,avx512dq,bmi,bmi2"
 
 struct Avx512Ops {
   SimdRay ray;
@@ -397,13 +423,8 @@ struct Avx512Ops {
     __m256 tf, outside;
     ray.slabs(n, tn, tf, outside);
     const __mmask8 inside = __mmask8(order >> 24) & ~_mm256_movepi32_mask(_mm256_castps_si256(outside));
-    const __mmask8 non_negative = _mm256_cmp_ps_mask(tf, _mm256_setzero_ps(), _CMP_GE_OQ);
-    const __m256 scaled = _mm256_mask_mul_ps(_mm256_mul_ps(tf, _mm256_set1_ps(kWidenDown)), non_negative, tf,
-                                             _mm256_set1_ps(kWidenUp));
-    const __m256 wf = _mm256_add_ps(scaled, ray.pad);
-    __mmask8 ok = _mm256_mask_cmp_ps_mask(inside, tn, wf, _CMP_LE_OQ);
-    ok = _mm256_mask_cmp_ps_mask(ok, tn, _mm256_set1_ps(hi), _CMP_LE_OQ);
-    return _mm256_mask_cmp_ps_mask(ok, wf, _mm256_set1_ps(lo), _CMP_GE_OQ);
+    const __m256 wf = widen(tf, ray.pad);
+    return in_range(inside, tn, wf, lo, hi);
   }
 
   __attribute__((target(PIERCE_AVX512_TARGET))) std::uint32_t node_hits(const WideNode<float>& n, float lo, float hi,
@@ -427,6 +448,11 @@ struct Avx512Ops {
     __m256 tn;
     const __mmask8 ok = slot_hits(n, order, lo, hi, tn);
     if (ok == 0) return 0;
+    if ((ok & (ok - 1)) == 0) {  // one child passes (most nodes of a first-hit ray): nothing to store
+      const int s = __builtin_ctz(ok);
+      nearest = {_mm256_cvtss_f32(_mm256_permutexvar_ps(_mm256_set1_epi32(s), tn)), n.child[s]};
+      return 1;
+    }
     __m256i child = _mm256_load_si256(reinterpret_cast<const __m256i*>(n.child));
     std::uint32_t mask = ok;
     if constexpr (kRanked) {
