@@ -66,5 +66,43 @@ TEST(TraversePolicy, CallbacksSeeEveryNodeAndHit) {
   EXPECT_GT(rays_with_hits, 50u);
 }
 
+// A policy that takes every hit of a fixed range is descended into with a delay (the node on top
+// of the stack before the new children goes first), which can outgrow a depth-first stack: from a
+// one-entry stack, the buffer must grow and the hits and visited nodes stay the filter's.
+struct GatherAnyOrder : GatherWithCallbacks {
+  static constexpr bool kAnyOrder = true;
+  using GatherWithCallbacks::GatherWithCallbacks;
+};
+
+TEST(TraversePolicy, AnyOrderGrowsItsStackAndVisitsTheSameNodes) {
+  const auto w = make_world({gen::random_soup(3000, 0.2, 5)});
+  const std::vector<Ray> rays = random_rays(w->scene.bounds(), 200, 8);
+  HitIterator filter(w->accel, KernelKind::filter);
+  NodeStack<float> deep, tiny;
+  deep.reserve(w->accel.wide().stack_capacity());
+  tiny.reserve(1);
+  const std::size_t tiny_start = tiny.capacity();
+  std::size_t hits = 0;
+  for (const Ray& ray : rays) {
+    const std::vector<Hit> want = kernel_hits(filter, ray);
+    const TraversalRay<float> r = TraversalRay<float>::make(ray, w->accel.wide().scene_max_abs);
+    GatherWithCallbacks depth_first(r);
+    GatherAnyOrder delayed(r);
+    Counters c;
+    deep.clear();
+    seed(w->accel.wide(), r, r.tmin, r.tmax, deep, c);
+    ASSERT_TRUE(traverse(simd_level(), w->accel.wide(), r, deep, depth_first, c));
+    tiny.clear();
+    seed(w->accel.wide(), r, r.tmin, r.tmax, tiny, c);
+    ASSERT_TRUE(traverse(simd_level(), w->accel.wide(), r, tiny, delayed, c));
+    std::sort(delayed.hits.begin(), delayed.hits.end(), HitOrder{});
+    EXPECT_TRUE(same_hits(want, delayed.hits)) << str(ray);
+    EXPECT_EQ(delayed.nodes, depth_first.nodes) << "the same nodes, in another order: " << str(ray);
+    hits += want.size();
+  }
+  EXPECT_GT(hits, 1000u);
+  EXPECT_GT(tiny.capacity(), tiny_start) << "the one-entry stack had to grow";
+}
+
 }  // namespace
 }  // namespace pierce::test

@@ -32,7 +32,8 @@
 namespace pierce {
 
 // Depth-first pending nodes, in a buffer sized once from the BVH's depth (WideBvh::stack_capacity):
-// no allocation and no capacity check per push. The traversal works on the raw buffer.
+// no allocation and no capacity check per push (but for a kAnyOrder policy's, see
+// StackCursor::ensure_room). The traversal works on the raw buffer.
 template <typename T>
 class NodeStack {
  public:
@@ -41,6 +42,8 @@ class NodeStack {
   void reserve(std::size_t n) {
     if (v_.size() < n + kWideArity) v_.resize(n + kWideArity);
   }
+  // Entries the buffer holds (what reserve() asked for, plus a node's worth).
+  std::size_t capacity() const { return v_.size(); }
   void clear() { size_ = 0; }
   bool empty() const { return size_ == 0; }
   void push(NodeEntry<T> e) { v_[size_++] = e; }
@@ -112,7 +115,8 @@ struct TraversalPolicy {
   // True if suspend() can return true (it then sees the pending nodes).
   static constexpr bool kSuspends = false;
   // True if nothing the policy does depends on the order in which nodes are visited (it takes every
-  // hit in a range that never changes): children are then pushed unranked, in slot order.
+  // hit in a range that never changes): children are then pushed unranked, in slot order, and
+  // descended into with a delay (traverse_with).
   static constexpr bool kAnyOrder = false;
   void culled(NodeEntry<T> /*node*/) {}
   template <class Pending>
@@ -217,13 +221,23 @@ template <typename T>
 class StackCursor {
  public:
   static constexpr bool kOrdered = false;
-  explicit StackCursor(NodeStack<T>& s) : s_(s), base_(s.data()), sp_(s.size()) {}
+  explicit StackCursor(NodeStack<T>& s) : s_(s), base_(s.data()), sp_(s.size()), cap_(s.capacity()) {}
   bool empty() const { return sp_ == 0; }
   T next_tn() const { return base_[sp_ - 1].tn; }
   NodeEntry<T> pop() { return base_[--sp_]; }
   void push(NodeEntry<T> e) { base_[sp_++] = e; }
   NodeEntry<T>* top() { return base_ + sp_; }
   void grow(std::size_t n) { sp_ += n; }
+  // Room for the next node's children: only a traversal that does not run depth first (the
+  // delayed descent below) can need more than WideBvh::stack_capacity(). Doubles the buffer where
+  // it must (at most a few times in a kernel's life: the buffer keeps its size).
+  void ensure_room() {
+    if (sp_ + 2 * kWideArity <= cap_) [[likely]]
+      return;
+    s_.set_size(sp_);
+    s_.reserve(2 * cap_);
+    base_ = s_.data(), cap_ = s_.capacity();
+  }
   const NodeStack<T>& sync() {
     s_.set_size(sp_);
     return s_;
@@ -232,7 +246,7 @@ class StackCursor {
  private:
   NodeStack<T>& s_;
   NodeEntry<T>* base_;
-  std::size_t sp_;
+  std::size_t sp_, cap_;
 };
 
 template <typename T>
@@ -304,10 +318,23 @@ inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Conta
       // slot order, unranked, where the policy takes any order), and the nearest (the last
       // stored) is descended into at once (taken from the registers, not read back; the
       // stack keeps the others). The others are prefetched; the nearest is read at once anyway.
+      if constexpr (Policy::kAnyOrder) pending.ensure_room();
       NodeEntry<T>* const pushed = pending.top();
       const std::uint32_t n = ops.template push_hits<!Policy::kAnyOrder>(node, p.lo(), p.hi(), pushed, cur);
       if (n == 0) continue;
       detail_prefetch(nodes, blocks, pushed, n - 1);
+      if constexpr (Policy::kAnyOrder) {
+        // Delayed descent: where the order does not matter, the node processed next is the one
+        // on top of the stack before this node's children, asked for (prefetched) a step ago,
+        // rather than the nearest child, asked for only now; that child takes its place. The
+        // same nodes are visited (a fixed range, nothing culled), in an order that hides the
+        // latency of one node test. The stack can then outgrow a depth-first traversal's bound
+        // (ensure_room above).
+        if (!pending.empty()) {
+          detail_prefetch(nodes, blocks, &cur, 1);
+          std::swap(cur, pushed[-1]);
+        }
+      }
       pending.grow(n - 1);
       have = true;
       continue;
