@@ -91,7 +91,7 @@ EmbreeExactBase::EmbreeExactBase(const EmbreeAccel& acc, HitOrder order, EmbreeQ
 }
 
 bool EmbreeExactBase::setup(const Ray& ray) {
-  q_.ray = TraversalRay<float>::make(ray, acc_->scene_max_abs());
+  q_.ray.assign(ray, acc_->scene_max_abs());
   q_.have_last = false;
   q_.best = Hit{};
   live_ = false;

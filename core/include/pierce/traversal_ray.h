@@ -43,6 +43,15 @@ struct TraversalRay {
   // scene_max_abs: largest |coordinate| in the scene, for the padding.
   static TraversalRay make(const Ray& r, double scene_max_abs) {
     TraversalRay tr;
+    tr.assign(r, scene_max_abs);
+    return tr;
+  }
+
+  // make(), in place: a kernel prepares its ray member without building a copy on the stack (that
+  // copy, in wide loads over the fields just written in narrow stores, stalled on store forwarding:
+  // a fifth of the per-ray code's samples in perf before this).
+  void assign(const Ray& r, double scene_max_abs) {
+    TraversalRay& tr = *this;
     T d[3], inv[3];
     bool finite;  // origin and direction finite in T
     detail::prepare_axes(r, tr, d, inv, finite);
@@ -70,7 +79,6 @@ struct TraversalRay {
     // the triangle test's projection, far below anything that costs traversal work.
     tr.pad = T((max_abs(r.org) + scene_max_abs) / (dmax > 0 ? dmax : 1.0) * 0x1p-20);
     tr.ok = !(tr.zero[0] & tr.zero[1] & tr.zero[2]) & finite;
-    return tr;
   }
 
   bool valid() const { return ok; }

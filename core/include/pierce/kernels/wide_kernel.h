@@ -37,7 +37,7 @@ class WideKernel {
     pending_.reserve(bvh.stack_capacity());
   }
 
-  void prepare(const Ray& ray) { ray_ = TraversalRay<T>::make(ray, bvh_->scene_max_abs); }
+  void prepare(const Ray& ray) { ray_.assign(ray, bvh_->scene_max_abs); }
   bool traceable() const { return !bvh_->empty() && ray_.valid(); }
   // A new traversal of [lo, hi] from the root.
   void seed_root(T lo, T hi) {
