@@ -116,6 +116,7 @@ struct Row {
 struct Settings {
   std::vector<std::size_t> columns{1, 5, 15, 0};
   int reps = 3;
+  int build_reps = 3;  // builds of each scene, Pierce's and Embree's alternating; medians compared
   bool count = false;  // time the kernels' counting variants and print their counters
   std::string heatmap_dir;  // non-empty: write traversal heat maps of each scene there
   bool force = false;       // overwrite existing heat maps
@@ -162,9 +163,7 @@ void time_rows(std::vector<Row>& rows, std::size_t ray_count, int reps) {
       cell.counters = {after.node_tests - before[k].node_tests, after.traversal_steps - before[k].traversal_steps,
                        after.prim_tests - before[k].prim_tests, after.valid_hits - before[k].valid_hits,
                        after.leaf_visits - before[k].leaf_visits};
-      std::vector<double> sorted = cell.seconds;
-      std::sort(sorted.begin(), sorted.end());
-      cell.median_seconds = sorted[sorted.size() / 2];
+      cell.median_seconds = median(cell.seconds);
     }
 }
 
@@ -374,7 +373,9 @@ void print_scene(const SceneResult& r, const Settings& st) {
             << "Embree (plain) " << fmt("%.3f", r.embree_build_s) << " s, "
             << fmt("%.0f", double(r.embree_bytes) / tris) << " bytes/triangle (robust: "
             << fmt("%.3f", r.embree_robust_build_s) << " s); build ratio "
-            << fmt("%.2f", r.pierce_build_s / r.embree_build_s) << "x\n";
+            << fmt("%.2f", r.pierce_build_s / r.embree_build_s) << "x ("
+            << (st.build_reps == 1 ? std::string("one build each") : "medians of " + std::to_string(st.build_reps) + " builds each, alternating")
+            << ")\n";
   if (r.exact_all) {
     std::cout << "hits per ray (exact kernels, all): mean " << fmt("%.2f", double(r.exact_all->hits) / double(rays))
               << ", max " << r.exact_all->max_per_ray << ", rays with a hit " << r.exact_all->rays_hit;
@@ -599,16 +600,33 @@ SceneResult run_scene(const BenchScene& s, const std::vector<KernelKind>& kernel
   SceneResult r;
   r.scene = &s;
   std::cerr << "[" << s.name << "] building\n";
-  const auto t0 = Clock::now();
-  const Accel accel(s.scene);
-  r.pierce_build_s = seconds_since(t0);
+  // Each build is timed st.build_reps times, Pierce's and Embree's alternating, and the medians
+  // compared: a single build favours whichever comes second (the scene's pages and the builders'
+  // thread pools are warm by then) and moves with the machine's load.
+  std::optional<Accel> built;
+  std::optional<EmbreeReference> plain_built, robust_built;
+  std::vector<double> pierce_s, embree_s, robust_s;
+  for (int i = 0; i < st.build_reps; ++i) {
+    built.reset();
+    const auto t0 = Clock::now();
+    built.emplace(s.scene);
+    pierce_s.push_back(seconds_since(t0));
+    plain_built.reset();
+    plain_built.emplace(s.scene, false);
+    embree_s.push_back(plain_built->build_seconds());
+    robust_built.reset();
+    robust_built.emplace(s.scene, true);
+    robust_s.push_back(robust_built->build_seconds());
+  }
+  const Accel& accel = *built;
+  const EmbreeReference &plain = *plain_built, &robust = *robust_built;
+  r.pierce_build_s = median(pierce_s);
+  r.embree_build_s = median(embree_s);
+  r.embree_robust_build_s = median(robust_s);
   r.pierce_bytes = accel.wide().memory_bytes();
   r.wide_nodes = accel.wide().nodes.size();
   r.leaf_blocks = accel.wide().blocks.size();
   r.triangles_in_bvh = accel.wide().triangles;
-  const EmbreeReference plain(s.scene, false), robust(s.scene, true);
-  r.embree_build_s = plain.build_seconds();
-  r.embree_robust_build_s = robust.build_seconds();
   r.embree_bytes = plain.bytes();
 
   r.rows = run_references(plain, robust, s.rays, st);
@@ -650,6 +668,9 @@ int run(int argc, char** argv) {
                  "write Gribble's traversal heat maps of each scene into this directory (queue, first hit; filter, all)");
   auto* reps_opt = app.add_option("--reps", st.reps, "timed repetitions per cell, median reported (default 3)")
                        ->check(CLI::Range(1, 100));
+  auto* build_reps_opt =
+      app.add_option("--build-reps", st.build_reps, "builds of each scene by Pierce and by Embree, alternating, median reported (default 3)")
+          ->check(CLI::Range(1, 20));
   app.add_option("--kernels", kernel_list, "comma-separated kernel rows to run (default: all)");
   app.add_option("--seed", seed, "seed of the scenes and rays (default 1)");
   std::string column_list;
@@ -713,6 +734,7 @@ int run(int argc, char** argv) {
     size = {8, 5000, 0.05, 3};
     if (rays_opt->count() == 0) ray_count = 2000;
     if (reps_opt->count() == 0) st.reps = 1;
+    if (build_reps_opt->count() == 0) st.build_reps = 1;
   }
   const int hw = int(std::thread::hardware_concurrency());
   if (threads == 0) threads = tbb::info::default_concurrency();
@@ -747,7 +769,7 @@ int run(int argc, char** argv) {
                   {"threads_used", threads_used},
                   {"load_average_start", load_before}};
   j["versions"] = {{"embree", RTC_VERSION_STRING}, {"tbb", TBB_VERSION_STRING}};
-  j["config"] = {{"rays", ray_count}, {"seed", seed},         {"reps", st.reps},
+  j["config"] = {{"rays", ray_count}, {"seed", seed},         {"reps", st.reps}, {"build_reps", st.build_reps},
                  {"quick", quick},    {"counters", st.count}, {"warmup_fraction", 0.125}};
   j["scenes"] = json::array();
   for (const auto& s : scenes) {
