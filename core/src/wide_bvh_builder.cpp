@@ -214,7 +214,8 @@ bool build_with_embree(const Scene& scene, const BvhBuildOptions& opts, WideBvh<
   args.sahBlockSize = kBlockLanes;
   // Embree fills a node's eight slots by splitting its children down to minLeafSize regardless of
   // the SAH: a subtree of one block's worth of triangles becomes one leaf block (as the collapse).
-  args.maxLeafSize = std::uint32_t(std::clamp(opts.max_leaf_size, 1, 32));
+  // Up to wide_max_leaf_size (two blocks by default) the SAH may keep a subtree as one leaf.
+  args.maxLeafSize = std::uint32_t(std::clamp(opts.wide_max_leaf_size, 1, 32));
   args.minLeafSize = std::min<std::uint32_t>(kBlockLanes, args.maxLeafSize);
   void* root = rtcBuildBVH(&args);
   bool ok = root != nullptr && rtcGetDeviceError(device) == RTC_ERROR_NONE;

@@ -289,7 +289,7 @@ TEST(BvhLayouts, DirectWideBuild) {
       SCOPED_TRACE(testing::Message() << (embree ? "Embree's builder" : "own builder") << ", max_leaf_size " << max_leaf);
       BvhBuildOptions opts;
       opts.embree_builder = embree;
-      opts.max_leaf_size = max_leaf;
+      opts.max_leaf_size = opts.wide_max_leaf_size = max_leaf;
       const WideBvhf bvh = build_wide_bvh<float>(scene, opts);
       std::map<std::pair<std::uint32_t, std::uint32_t>, int> seen;
       const BBoxf box = exact_subtree_box(bvh, bvh.root, seen);

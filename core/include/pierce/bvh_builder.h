@@ -12,6 +12,9 @@ namespace pierce {
 struct BvhBuildOptions {
   int bins = 16;                   // Pierce's builder only
   int max_leaf_size = 8;
+  // The wide BVH's leaves (Embree's builder): up to two 8-lane blocks. Against one block, the
+  // 1.64 M-triangle shell had 50 104 nodes instead of 84 689 and built and traced faster.
+  int wide_max_leaf_size = 16;
   float traversal_cost = 1.0f;     // relative to one triangle test
   bool embree_builder = true;      // false: always Pierce's own builder
 };
