@@ -413,7 +413,6 @@ struct Avx2Ops {
   }
 };
 
-
 struct Avx512Ops {
   SimdRay ray;
   __attribute__((target(PIERCE_AVX512_TARGET))) explicit Avx512Ops(const TraversalRay<float>& r) : ray(r) {}
