@@ -52,11 +52,6 @@ std::vector<Ray> grid_rays(int n) {
   return rays;
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
 int run(int argc, char** argv) {
   CLI::App app{"X-ray effect with early exit: queue vs filter vs restart"};
   bool quick = false, force = false;
