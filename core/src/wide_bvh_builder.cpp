@@ -1,141 +1,172 @@
-// The wide BVH built directly: Embree's rtcBuildBVH (binned SAH, parallel) with branching factor
-// eight chooses the tree, which is then written once into Pierce's WideNode / TriBlock layout with
-// every box recomputed exactly from the triangles in precision T. No binary tree is built and
-// nothing is collapsed. Where Embree's builder cannot be used (coordinates beyond
-// kEmbreeBuildMaxCoord, or it failed), Pierce's own binned SAH builder and the collapse take over.
+// The wide BVH built directly, eight wide: a binned SAH builder on float boxes (sah_binning.h)
+// chooses the tree in Pierce's own build records, which are then written once into the WideNode /
+// TriBlock layout with every box recomputed exactly from the triangles in precision T. No binary
+// tree is built and nothing is collapsed. Where float boxes cannot be used (coordinates beyond
+// kEmbreeBuildMaxCoord), Pierce's precision-T binary builder and the collapse take over.
+//
+// The tree is the one Embree's binned SAH builder makes (Wald 2007, as in Embree's
+// BVHBuilderBinnedSAH): a node takes the range's best plane, then splits its largest child (by
+// area) until it has eight; a range becomes a leaf at up to minLeafSize triangles, or at up to
+// wide_max_leaf_size where the SAH says a leaf is cheaper. Embree's generic rtcBuildBVH, used here
+// before, builds the same tree but was slower than Embree's own scene build by more than the issue
+// allows (docs/BENCHMARKS.md, fourteenth session).
 #include <algorithm>
 #include <array>
 #include <atomic>
 #include <cstdint>
-#include <new>
+#include <type_traits>
 #include <vector>
 
+#include <tbb/concurrent_vector.h>
 #include <tbb/parallel_for.h>
 
 #include "embree_build_support.h"
 #include "pierce/bvh_builder.h"
 #include "pierce/wide_bvh.h"
+#include "sah_binning.h"
 #include "wide_bvh_writer.h"
 
 namespace pierce {
 
 namespace {
 
-// The tree as Embree's builder makes it, in its thread-local allocators. Both kinds start with
-// the leaf's triangle count (0 for an inner node). An inner node also gets its subtree's sizes in
-// the writer's first pass.
-struct BuildInner {
-  std::uint32_t leaf_count;
-  std::uint32_t child_count;
-  void* child[kWideArity];
-  std::uint32_t nodes_below, blocks_below, triangles_below, depth_below;  // the subtree's, itself included
-};
-struct BuildLeaf {
-  std::uint32_t leaf_count;
-  std::uint32_t id[1];  // leaf_count primitive ids (allocated to size)
+using detail::PrimRange;
+using detail::PrimRef;
+using detail::SahSplit;
+
+// A child in the build tree: a leaf (count > 0: prims[first, first + count)) or an inner node
+// (count 0: nodes[first]).
+struct BuildChild {
+  std::uint32_t first = 0, count = 0;
+  bool is_leaf() const { return count > 0; }
 };
 
-void* create_node(RTCThreadLocalAllocator alloc, unsigned int children, void* /*user*/) {
-  return new (rtcThreadLocalAlloc(alloc, sizeof(BuildInner), 16)) BuildInner{0, children, {}, 0, 0, 0, 0};
-}
-void set_children(void* node, void** children, unsigned int count, void* /*user*/) {
-  auto* n = static_cast<BuildInner*>(node);
-  n->child_count = std::min<unsigned int>(count, kWideArity);
-  for (unsigned int i = 0; i < n->child_count; ++i) n->child[i] = children[i];
-}
-void set_bounds(void*, const RTCBounds**, unsigned int, void*) {}  // recomputed exactly when written
-void* create_leaf(RTCThreadLocalAllocator alloc, const RTCBuildPrimitive* prims, size_t count, void* /*user*/) {
-  const std::size_t bytes = offsetof(BuildLeaf, id) + sizeof(std::uint32_t) * std::max<size_t>(count, 1);
-  auto* leaf = static_cast<BuildLeaf*>(rtcThreadLocalAlloc(alloc, bytes, 16));
-  leaf->leaf_count = std::uint32_t(count);
-  for (size_t i = 0; i < count; ++i) leaf->id[i] = prims[i].primID;
-  return leaf;
-}
-std::uint32_t leaf_count(const void* p) { return *static_cast<const std::uint32_t*>(p); }
+// An inner node with its subtree's sizes (itself included), so the writer can give every subtree
+// its preorder range of nodes and blocks before writing any of it.
+struct BuildNode {
+  std::array<BuildChild, kWideArity> child{};
+  std::uint32_t child_count = 0;
+  std::uint32_t nodes_below = 0, blocks_below = 0, triangles_below = 0, depth_below = 0;
+};
 
+// Ranges of at least this many triangles build their children in parallel (Embree: 1024).
+constexpr std::uint32_t kParallelBuild = 1024;
 // Subtrees of at least this many triangles are written in parallel, child by child.
-constexpr std::uint32_t kParallelTriangles = 8192;
+constexpr std::uint32_t kParallelWrite = 8192;
 
-// A triangle the build takes: where it is in the scene.
-struct TriRef {
-  std::uint32_t geom, prim;
+// A range with the plane it would be split at (found only where it may be split).
+struct Record {
+  PrimRange range;
+  SahSplit split;
 };
 
-// Writes Embree's tree in two passes: the first (serial, over the inner nodes only) sizes every
-// subtree and checks the tree's shape; the second writes each subtree into its preorder range of
-// nodes and blocks, big subtrees in parallel, so the layout does not depend on the schedule and the
-// fresh pages are faulted in by the threads that fill them.
+struct Builder {
+  PrimRef* prims;
+  std::uint32_t min_leaf, max_leaf;
+  float traversal_cost;
+  tbb::concurrent_vector<BuildNode> nodes;  // grows without moving: tasks fill their own nodes
+
+  Record record(const PrimRange& r) const {
+    Record rec{r, {}};
+    if (r.size() > min_leaf) rec.split = detail::find_split(prims, r);
+    return rec;
+  }
+
+  BuildChild build(const Record& cur) {
+    const PrimRange& r = cur.range;
+    const std::uint32_t n = r.size();
+    const float area = r.geom.half_area();
+    if (n <= min_leaf || (n <= max_leaf && area * detail::blocks_of(n) <= traversal_cost * area + cur.split.cost))
+      return {r.begin, n};
+
+    std::array<Record, kWideArity> children;
+    children[0] = cur;
+    std::uint32_t count = 1;
+    while (count < kWideArity) {
+      int largest = -1;
+      float largest_area = -1.0f;
+      for (std::uint32_t i = 0; i < count; ++i) {
+        if (children[i].range.size() <= min_leaf) continue;
+        if (const float a = children[i].range.geom.half_area(); a > largest_area) largest = int(i), largest_area = a;
+      }
+      if (largest < 0) break;
+      PrimRange left, right;
+      detail::partition(prims, children[largest].range, children[largest].split, left, right);
+      children[largest] = record(left);
+      children[count++] = record(right);
+    }
+
+    const auto it = nodes.grow_by(1);
+    const auto index = std::uint32_t(it - nodes.begin());
+    std::array<BuildChild, kWideArity> built{};
+    auto child = [&](std::uint32_t s) { built[s] = build(children[s]); };
+    if (n >= kParallelBuild) {
+      tbb::parallel_for(std::uint32_t(0), count, child);
+    } else {
+      for (std::uint32_t s = 0; s < count; ++s) child(s);
+    }
+
+    BuildNode& node = nodes[index];
+    node.child = built;
+    node.child_count = count;
+    node.nodes_below = 1, node.depth_below = 1;
+    for (std::uint32_t s = 0; s < count; ++s) {
+      const BuildChild c = built[s];
+      if (c.is_leaf()) {
+        node.blocks_below += detail::leaf_blocks_for(c.count);
+        node.triangles_below += c.count;
+      } else {
+        const BuildNode& below = nodes[c.first];
+        node.nodes_below += below.nodes_below, node.blocks_below += below.blocks_below;
+        node.triangles_below += below.triangles_below;
+        node.depth_below = std::max(node.depth_below, below.depth_below + 1);
+      }
+    }
+    return {index, 0};
+  }
+};
+
+// Writes the build tree: each subtree into its preorder range of nodes and blocks, big subtrees in
+// parallel, so the layout does not depend on the schedule and the fresh pages are faulted in by
+// the threads that fill them.
 template <typename T>
 struct Writer {
   const Scene& scene;
-  const HugePageVector<TriRef>& refs;
+  const PrimRef* prims;
+  const tbb::concurrent_vector<BuildNode>& nodes;
   WideBvh<T>& out;
-  HugePageVector<std::uint8_t> seen;  // each primitive must be in exactly one leaf
 
-  // False where the tree is not one Pierce can take (a null child, an inner node without children).
-  bool size(void* p) {
-    if (leaf_count(p) > 0) return true;
-    auto* n = static_cast<BuildInner*>(p);
-    if (n->child_count < 1) return false;
-    n->nodes_below = 1, n->blocks_below = 0, n->triangles_below = 0, n->depth_below = 1;
-    for (std::uint32_t s = 0; s < n->child_count; ++s) {
-      void* c = n->child[s];
-      if (c == nullptr || !size(c)) return false;
-      if (const std::uint32_t k = leaf_count(c); k > 0) {
-        n->blocks_below += detail::leaf_blocks_for(k);
-        n->triangles_below += k;
-      } else {
-        const auto* ci = static_cast<const BuildInner*>(c);
-        n->nodes_below += ci->nodes_below, n->blocks_below += ci->blocks_below;
-        n->triangles_below += ci->triangles_below;
-        n->depth_below = std::max(n->depth_below, ci->depth_below + 1);
-      }
-    }
-    return true;
+  Triangle<T> triangle(const PrimRef& p) const {
+    const Geometry& geo = scene.geometry(p.geom());
+    const Tri& t = geo.triangles[p.prim()];
+    return {Vec3<T>(geo.vertices[t[0]]), Vec3<T>(geo.vertices[t[1]]), Vec3<T>(geo.vertices[t[2]]), p.geom(), p.prim()};
   }
 
-  Triangle<T> triangle(std::uint32_t id) const {
-    const TriRef r = refs[id];
-    const Geometry& geo = scene.geometry(r.geom);
-    const Tri& t = geo.triangles[r.prim];
-    return {Vec3<T>(geo.vertices[t[0]]), Vec3<T>(geo.vertices[t[1]]), Vec3<T>(geo.vertices[t[2]]), r.geom, r.prim};
-  }
-
-  // Every id in range and seen once (atomically: leaves are written concurrently).
-  bool claim(const BuildLeaf& leaf) {
-    for (std::uint32_t i = 0; i < leaf.leaf_count; ++i) {
-      const std::uint32_t id = leaf.id[i];
-      if (id >= refs.size() || std::atomic_ref<std::uint8_t>(seen[id]).exchange(1) != 0) return false;
-    }
-    return true;
-  }
-
-  // Writes the subtree at `p`: an inner node at out.nodes[node] with its descendants after it, its
+  // Writes the subtree `c`: an inner node at out.nodes[node] with its descendants after it, its
   // leaves' blocks from out.blocks[block] on. Returns its reference; `box` gets its exact bounds.
-  NodeRef write(const void* p, std::uint32_t node, std::uint32_t block, BBox<T>& box, std::atomic<bool>& ok) {
-    if (const std::uint32_t n = leaf_count(p); n > 0) {
-      const auto* leaf = static_cast<const BuildLeaf*>(p);
-      if (!claim(*leaf)) ok = false;
-      return detail::write_leaf(out, block, n, [&](std::size_t k) { return triangle(leaf->id[k]); }, box);
+  NodeRef write(BuildChild c, std::uint32_t node, std::uint32_t block, BBox<T>& box) {
+    if (c.is_leaf()) {
+      const PrimRef* leaf = prims + c.first;
+      return detail::write_leaf(out, block, c.count, [&](std::size_t k) { return triangle(leaf[k]); }, box);
     }
-    const auto* inner = static_cast<const BuildInner*>(p);
-    const int nk = int(inner->child_count);
+    const BuildNode& inner = nodes[c.first];
+    const int nk = int(inner.child_count);
     std::array<BBox<T>, kWideArity> boxes{};
-    std::array<NodeRef, kWideArity> refs_out{};
+    std::array<NodeRef, kWideArity> refs{};
     std::array<std::uint32_t, kWideArity> child_node{}, child_block{};
     std::uint32_t next_node = node + 1, next_block = block;
     for (int s = 0; s < nk; ++s) {
       child_node[s] = next_node, child_block[s] = next_block;
-      const void* c = inner->child[s];
-      if (const std::uint32_t k = leaf_count(c); k > 0) {
-        next_block += detail::leaf_blocks_for(k);
+      const BuildChild k = inner.child[s];
+      if (k.is_leaf()) {
+        next_block += detail::leaf_blocks_for(k.count);
       } else {
-        next_node += static_cast<const BuildInner*>(c)->nodes_below;
-        next_block += static_cast<const BuildInner*>(c)->blocks_below;
+        next_node += nodes[k.first].nodes_below;
+        next_block += nodes[k.first].blocks_below;
       }
     }
-    auto child = [&](int s) { refs_out[s] = write(inner->child[s], child_node[s], child_block[s], boxes[s], ok); };
-    if (inner->triangles_below >= kParallelTriangles) {
+    auto child = [&](int s) { refs[s] = write(inner.child[s], child_node[s], child_block[s], boxes[s]); };
+    if (inner.triangles_below >= kParallelWrite) {
       tbb::parallel_for(0, nk, child);
     } else {
       for (int s = 0; s < nk; ++s) child(s);
@@ -143,89 +174,81 @@ struct Writer {
     WideNode<T>& w = out.nodes[node];
     detail::set_wide_boxes(w, boxes.data(), nk);
     for (int s = 0; s < nk; ++s) {
-      w.child[s] = refs_out[s];
+      w.child[s] = refs[s];
       box.extend(boxes[s]);
     }
     return node;
   }
 
-  // The whole tree from Embree's root; false if Embree's tree cannot be taken as it is.
-  bool write_all(void* root) {
-    if (!size(root)) return false;
-    std::uint32_t nodes = 0, blocks = 0, triangles = 0;
-    if (const std::uint32_t k = leaf_count(root); k > 0) {
-      blocks = detail::leaf_blocks_for(k), triangles = k;
+  void write_all(BuildChild root) {
+    std::uint32_t node_count = 0, block_count = 0;
+    if (root.is_leaf()) {
+      block_count = detail::leaf_blocks_for(root.count), out.triangles = root.count;
     } else {
-      const auto* r = static_cast<const BuildInner*>(root);
-      nodes = r->nodes_below, blocks = r->blocks_below, triangles = r->triangles_below, out.depth = r->depth_below;
+      const BuildNode& r = nodes[root.first];
+      node_count = r.nodes_below, block_count = r.blocks_below, out.triangles = r.triangles_below;
+      out.depth = r.depth_below;
     }
-    if (triangles != refs.size()) return false;
-    detail::check_block_count(blocks);
-    out.nodes.resize(nodes);  // untouched until written (HugePageAllocator::construct)
-    out.blocks.resize(blocks);
-    std::atomic<bool> ok{true};
+    detail::check_block_count(block_count);
+    out.nodes.resize(node_count);  // untouched until written (HugePageAllocator::construct)
+    out.blocks.resize(block_count);
     BBox<T> box;
-    out.root = write(root, 0, 0, box, ok);
+    out.root = write(root, 0, 0, box);
     out.bounds = box;
-    out.triangles = triangles;
-    return ok;
   }
 };
 
-// Embree's tree written as the wide BVH; false (and `out` unusable) if Embree failed, or lost or
-// repeated a primitive.
+// The scene's non-degenerate triangles (in T) as build references, boxes rounded outward to float.
 template <typename T>
-bool build_with_embree(const Scene& scene, const BvhBuildOptions& opts, WideBvh<T>& out) {
-  const RTCDevice device = detail::builder_device();
-  if (device == nullptr) return false;
-  // The build's arrays are in huge pages (huge_page_allocator.h): each is filled once, at once.
-  HugePageVector<TriRef> refs;
-  refs.reserve(scene.triangle_count());
+HugePageVector<PrimRef> prim_refs(const Scene& scene) {
+  HugePageVector<PrimRef> prims(scene.triangle_count());
+  std::size_t first = 0;
   for (std::uint32_t g = 0; g < scene.geometries().size(); ++g) {
     const Geometry& geo = scene.geometry(g);
-    for (std::uint32_t p = 0; p < geo.triangles.size(); ++p) {
-      // The scene flags triangles degenerate in float; a double BVH asks in double.
-      if constexpr (std::is_same_v<T, float>) {
-        if (geo.degenerate[p]) continue;
-      } else {
-        const Tri& t = geo.triangles[p];
-        if (is_degenerate(geo.vertices[t[0]], geo.vertices[t[1]], geo.vertices[t[2]])) continue;
-      }
-      refs.push_back({g, p});
-    }
+    PrimRef* out = prims.data() + first;
+    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, std::uint32_t(geo.triangles.size()), 4096),
+                      [&](const auto& range) {
+                        for (std::uint32_t p = range.begin(); p != range.end(); ++p) {
+                          const Tri& t = geo.triangles[p];
+                          const Vec3<T> v[3] = {Vec3<T>(geo.vertices[t[0]]), Vec3<T>(geo.vertices[t[1]]),
+                                                Vec3<T>(geo.vertices[t[2]])};
+                          // The scene flags triangles degenerate in float; a double BVH asks in double.
+                          bool degenerate;
+                          if constexpr (std::is_same_v<T, float>) {
+                            degenerate = geo.degenerate[p] != 0;
+                          } else {
+                            degenerate = is_degenerate(v[0], v[1], v[2]);
+                          }
+                          BBox<T> b;
+                          for (const Vec3<T>& x : v) b.extend(x);
+                          PrimRef& r = out[p];
+                          if (degenerate) {  // removed below; an empty box marks it
+                            r.lo = detail::Float4{} + 1.0f, r.hi = detail::Float4{} - 1.0f;
+                            continue;
+                          }
+                          r.lo = detail::Float4{detail::round_down(double(b.lo.x)), detail::round_down(double(b.lo.y)),
+                                  detail::round_down(double(b.lo.z)), PrimRef::as_float(g)};
+                          r.hi = detail::Float4{detail::round_up(double(b.hi.x)), detail::round_up(double(b.hi.y)),
+                                  detail::round_up(double(b.hi.z)), PrimRef::as_float(p)};
+                        }
+                      });
+    first += geo.triangles.size();
   }
-  if (refs.empty()) return true;
-  HugePageVector<RTCBuildPrimitive> prims(refs.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, refs.size(), 4096), [&](const auto& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const Geometry& geo = scene.geometry(refs[i].geom);
-      const Tri& t = geo.triangles[refs[i].prim];
-      BBox<T> b;
-      for (int k = 0; k < 3; ++k) b.extend(Vec3<T>(geo.vertices[t[k]]));
-      prims[i] = detail::build_primitive(b, std::uint32_t(i));
-    }
-  });
+  auto is_marked = [](const PrimRef& r) { return r.lo[0] > r.hi[0]; };
+  prims.erase(std::remove_if(prims.begin(), prims.end(), is_marked), prims.end());
+  return prims;
+}
 
-  RTCBVH bvh = rtcNewBVH(device);
-  RTCBuildArguments args =
-      detail::build_arguments(bvh, prims, opts.traversal_cost, create_node, set_children, set_bounds, create_leaf);
-  args.maxBranchingFactor = kWideArity;
-  // A leaf block tests its eight lanes at once: the SAH counts leaf cost per block of eight.
-  args.sahBlockSize = kBlockLanes;
-  // Embree fills a node's eight slots by splitting its children down to minLeafSize regardless of
-  // the SAH: a subtree of one block's worth of triangles becomes one leaf block (as the collapse).
-  // Up to wide_max_leaf_size (two blocks by default) the SAH may keep a subtree as one leaf.
-  args.maxLeafSize = std::uint32_t(std::clamp(opts.wide_max_leaf_size, 1, 32));
-  args.minLeafSize = std::min<std::uint32_t>(kBlockLanes, args.maxLeafSize);
-  void* root = rtcBuildBVH(&args);
-  bool ok = root != nullptr && rtcGetDeviceError(device) == RTC_ERROR_NONE;
-  if (ok) {
-    HugePageVector<RTCBuildPrimitive>().swap(prims);  // Embree is done with them
-    Writer<T> w{scene, refs, out, HugePageVector<std::uint8_t>(refs.size(), 0)};
-    ok = w.write_all(root);
-  }
-  rtcReleaseBVH(bvh);
-  return ok;
+template <typename T>
+void build_binned(const Scene& scene, const BvhBuildOptions& opts, WideBvh<T>& out) {
+  HugePageVector<PrimRef> prims = prim_refs<T>(scene);
+  if (prims.empty()) return;
+  PrimRange all{0, std::uint32_t(prims.size()), {}, {}};
+  for (const PrimRef& p : prims) all.geom.extend(p.lo, p.hi), all.cent.extend(p.centroid2());
+  const auto max_leaf = std::uint32_t(std::clamp(opts.wide_max_leaf_size, 1, 32));
+  Builder builder{prims.data(), std::min<std::uint32_t>(kBlockLanes, max_leaf), max_leaf, opts.traversal_cost, {}};
+  const BuildChild root = builder.build(builder.record(all));
+  Writer<T>{scene, prims.data(), builder.nodes, out}.write_all(root);
 }
 
 }  // namespace
@@ -236,7 +259,8 @@ WideBvh<T> build_wide_bvh(const Scene& scene, const BvhBuildOptions& opts) {
   if (opts.embree_builder && max_coord < kEmbreeBuildMaxCoord) {
     WideBvh<T> out;
     out.scene_max_abs = max_coord;
-    if (build_with_embree(scene, opts, out)) return out;
+    build_binned(scene, opts, out);
+    return out;
   }
   BvhBuildOptions own = opts;
   own.embree_builder = false;

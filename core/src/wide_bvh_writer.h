@@ -24,25 +24,26 @@ void set_wide_boxes(WideNode<T>& w, const BBox<T>* boxes, int n) {
   for (int s = 0; s < kWideArity; ++s) w.child[s] = 0;
   for (int s = 0; s < n; ++s)
     for (int a = 0; a < 3; ++a) w.lo[a][s] = boxes[s].lo[a], w.hi[a][s] = boxes[s].hi[a];
+  // Per octant, each child's rank by key (its centre along (+-1, +-1, +-1); ties by slot, empty
+  // slots last): a stable sort of eight, without branches on the keys.
+  std::array<std::array<double, 3>, kWideArity> centre{};
+  for (int s = 0; s < n; ++s)
+    for (int a = 0; a < 3; ++a) centre[s][a] = 0.5 * (double(boxes[s].lo[a]) + double(boxes[s].hi[a]));
   const std::uint32_t valid = (1u << n) - 1;
   for (int oct = 0; oct < 8; ++oct) {
-    std::array<int, kWideArity> slot{};
     std::array<double, kWideArity> key{};
     for (int s = 0; s < kWideArity; ++s) {
-      slot[s] = s;
-      key[s] = std::numeric_limits<double>::infinity();  // empty slots last
+      key[s] = std::numeric_limits<double>::infinity();
       if (s >= n) continue;
       key[s] = 0;
-      for (int a = 0; a < 3; ++a) {
-        const double c = 0.5 * (double(boxes[s].lo[a]) + double(boxes[s].hi[a]));
-        key[s] += (oct >> a & 1) ? -c : c;
-      }
+      for (int a = 0; a < 3; ++a) key[s] += (oct >> a & 1) ? -centre[s][a] : centre[s][a];
     }
-    // Insertion sort (stable, no allocation): eight entries.
-    for (int i = 1; i < kWideArity; ++i)
-      for (int j = i; j > 0 && key[slot[j]] < key[slot[j - 1]]; --j) std::swap(slot[j], slot[j - 1]);
     std::uint32_t packed = valid << 24;
-    for (int k = 0; k < kWideArity; ++k) packed |= std::uint32_t(slot[k]) << (3 * k);
+    for (int s = 0; s < kWideArity; ++s) {
+      int rank = 0;
+      for (int t = 0; t < kWideArity; ++t) rank += int(key[t] < key[s] || (key[t] == key[s] && t < s));
+      packed |= std::uint32_t(s) << (3 * rank);
+    }
     w.order[oct] = packed;
   }
 }

@@ -279,33 +279,56 @@ BBoxf exact_subtree_box(const WideBvhf& bvh, NodeRef ref, std::map<std::pair<std
   return box;
 }
 
-// The direct 8-wide build (Embree's builder, and Pierce's own binary build collapsed where that is
-// off) at several leaf sizes: exact boxes, every non-degenerate triangle exactly once, exact kernels.
+// The direct 8-wide build: exact boxes, every non-degenerate triangle exactly once, exact kernels.
+void check_direct_build(const Scene& scene, const Expected& ex, const BvhBuildOptions& opts) {
+  const WideBvhf bvh = build_wide_bvh<float>(scene, opts);
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> seen;
+  const BBoxf box = exact_subtree_box(bvh, bvh.root, seen);
+  EXPECT_EQ(box.lo, bvh.bounds.lo);
+  EXPECT_EQ(box.hi, bvh.bounds.hi);
+  std::size_t want = 0;
+  for (std::uint32_t g = 0; g < scene.geometries().size(); ++g)
+    for (std::uint32_t p = 0; p < scene.geometry(g).triangles.size(); ++p) {
+      if (scene.geometry(g).degenerate[p]) continue;
+      ++want;
+      EXPECT_EQ(seen[std::make_pair(g, p)], 1) << "geom " << g << " prim " << p;
+    }
+  EXPECT_EQ(seen.size(), want);
+  EXPECT_EQ(bvh.triangles, want);
+  check_wide(bvh, ex);
+}
+
+// The binned float builder, and Pierce's binary build collapsed where that is off, at several
+// leaf sizes.
 TEST(BvhLayouts, DirectWideBuild) {
   const Scene scene = builder_scene();
   const Expected ex(scene, random_rays(scene.bounds(), 60, 8));
-  for (const bool embree : {true, false}) {
+  for (const bool binned : {true, false}) {
     for (const int max_leaf : {1, 8, 32}) {
-      SCOPED_TRACE(testing::Message() << (embree ? "Embree's builder" : "own builder") << ", max_leaf_size " << max_leaf);
+      SCOPED_TRACE(testing::Message() << (binned ? "binned builder" : "binary builder collapsed") << ", max_leaf_size "
+                                      << max_leaf);
       BvhBuildOptions opts;
-      opts.embree_builder = embree;
+      opts.embree_builder = binned;
       opts.max_leaf_size = opts.wide_max_leaf_size = max_leaf;
-      const WideBvhf bvh = build_wide_bvh<float>(scene, opts);
-      std::map<std::pair<std::uint32_t, std::uint32_t>, int> seen;
-      const BBoxf box = exact_subtree_box(bvh, bvh.root, seen);
-      EXPECT_EQ(box.lo, bvh.bounds.lo);
-      EXPECT_EQ(box.hi, bvh.bounds.hi);
-      std::size_t want = 0;
-      for (std::uint32_t g = 0; g < scene.geometries().size(); ++g)
-        for (std::uint32_t p = 0; p < scene.geometry(g).triangles.size(); ++p) {
-          if (scene.geometry(g).degenerate[p]) continue;
-          ++want;
-          EXPECT_EQ(seen[std::make_pair(g, p)], 1) << "geom " << g << " prim " << p;
-        }
-      EXPECT_EQ(seen.size(), want);
-      EXPECT_EQ(bvh.triangles, want);
-      check_wide(bvh, ex);
+      check_direct_build(scene, ex, opts);
     }
+  }
+}
+
+// Hundreds of triangles with the same centroid: no plane separates them, so the binned builder
+// splits them by index until each leaf holds at most wide_max_leaf_size, and the tree stays shallow.
+TEST(BvhLayouts, DirectWideBuildOfCoincidentStack) {
+  const Scene scene =
+      gen::to_scene({gen::duplicated(gen::box({0.2, 0.2, 0.5}, {0.8, 0.8, 1.5}, "stack"), 300, true),
+                     gen::random_soup(200, 0.3, 4)});
+  const Expected ex(scene, random_rays(scene.bounds(), 40, 5));
+  for (const int max_leaf : {1, 16}) {
+    SCOPED_TRACE(testing::Message() << "max_leaf_size " << max_leaf);
+    BvhBuildOptions opts;
+    opts.wide_max_leaf_size = max_leaf;
+    check_direct_build(scene, ex, opts);
+    const WideBvhf bvh = build_wide_bvh<float>(scene, opts);
+    EXPECT_LE(bvh.depth, 12u);  // 3800 triangles: halving by index is at most 12 levels
   }
 }
 

@@ -10,13 +10,15 @@
 namespace pierce {
 
 struct BvhBuildOptions {
-  int bins = 16;                   // Pierce's builder only
+  int bins = 16;                   // Pierce's binary builder only
   int max_leaf_size = 8;
-  // The wide BVH's leaves (Embree's builder): up to two 8-lane blocks. Against one block, the
-  // 1.64 M-triangle shell had 50 104 nodes instead of 84 689 and built and traced faster.
+  // The wide BVH's leaves (its binned SAH builder): up to two 8-lane blocks. Against one block,
+  // the 1.64 M-triangle shell has 50 104 nodes instead of 84 689 (docs/BENCHMARKS.md).
   int wide_max_leaf_size = 16;
   float traversal_cost = 1.0f;     // relative to one triangle test
-  bool embree_builder = true;      // false: always Pierce's own builder
+  // false: always Pierce's binary builder in precision T (for the wide BVH: then collapsed),
+  // instead of Embree's rtcBuildBVH (binary) or the float binned builder (wide).
+  bool embree_builder = true;
 };
 
 // Embree's builder drops primitives whose bounds reach its FLT_LARGE (1.844e18); beyond this the

@@ -103,9 +103,9 @@ using WideBvhf = WideBvh<float>;
 using WideBvhd = WideBvh<double>;
 
 // The wide BVH of the scene's non-degenerate triangles (degenerate in T: never hit), built
-// directly 8-wide by Embree's binned SAH builder (rtcBuildBVH, parallel); where that cannot be
-// used (coordinates beyond kEmbreeBuildMaxCoord, or opts.embree_builder off), Pierce's own binary
-// SAH build collapsed to eight wide.
+// directly 8-wide by a TBB-parallel binned SAH builder on float boxes (wide_bvh_builder.cpp); where
+// float boxes cannot be used (coordinates beyond kEmbreeBuildMaxCoord, or opts.embree_builder off),
+// Pierce's binary SAH build in precision T collapsed to eight wide.
 template <typename T>
 WideBvh<T> build_wide_bvh(const Scene& scene, const BvhBuildOptions& opts = {});
 

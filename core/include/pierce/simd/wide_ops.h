@@ -145,11 +145,15 @@ __attribute__((target("avx2"))) inline void entry_pairs(__m256 tn, __m256i child
   second = _mm256_permute2x128_si256(lo, hi, 0x31);
 }
 
+// Lane k of a node's entry distances.
+__attribute__((target("avx2"))) inline float lane_tn(__m256 tn, int k) {
+  return _mm_cvtss_f32(_mm256_castps256_ps128(_mm256_permutevar8x32_ps(tn, _mm256_set1_epi32(k))));
+}
+
 // Lane k of a node's entry distances and child references, as a NodeEntry.
 __attribute__((target("avx2"))) inline NodeEntry<float> lane_entry(__m256 tn, __m256i child, int k) {
-  const __m256i idx = _mm256_set1_epi32(k);
-  return {_mm_cvtss_f32(_mm256_castps256_ps128(_mm256_permutevar8x32_ps(tn, idx))),
-          NodeRef(_mm_cvtsi128_si32(_mm256_castsi256_si128(_mm256_permutevar8x32_epi32(child, idx))))};
+  return {lane_tn(tn, k),
+          NodeRef(_mm_cvtsi128_si32(_mm256_castsi256_si128(_mm256_permutevar8x32_epi32(child, _mm256_set1_epi32(k)))))};
 }
 
 // Left-packing four 64-bit entries by a 4-bit mask with one permute (AVX2 has no compress): the
@@ -381,8 +385,7 @@ struct Avx2Ops {
     if (slots == 0) return 0;
     if ((slots & (slots - 1)) == 0) {  // one child passes (most nodes of a first-hit ray): nothing to store
       const int s = __builtin_ctz(slots);
-      nearest = {_mm_cvtss_f32(_mm256_castps256_ps128(_mm256_permutevar8x32_ps(tn, _mm256_set1_epi32(s)))),
-                 n.child[s]};
+      nearest = {lane_tn(tn, s), n.child[s]};
       return 1;
     }
     __m256i child = _mm256_load_si256(reinterpret_cast<const __m256i*>(n.child));
@@ -449,7 +452,7 @@ struct Avx512Ops {
     if (ok == 0) return 0;
     if ((ok & (ok - 1)) == 0) {  // one child passes (most nodes of a first-hit ray): nothing to store
       const int s = __builtin_ctz(ok);
-      nearest = {_mm256_cvtss_f32(_mm256_permutexvar_ps(_mm256_set1_epi32(s), tn)), n.child[s]};
+      nearest = {lane_tn(tn, s), n.child[s]};
       return 1;
     }
     __m256i child = _mm256_load_si256(reinterpret_cast<const __m256i*>(n.child));
