@@ -76,8 +76,13 @@ struct Builder {
     const PrimRange& r = cur.range;
     const std::uint32_t n = r.size();
     const float area = r.geom.half_area();
-    if (n <= min_leaf || (n <= max_leaf && area * detail::blocks_of(n) <= traversal_cost * area + cur.split.cost))
+    if (n <= min_leaf || (n <= max_leaf && area * detail::blocks_of(n) <= traversal_cost * area + cur.split.cost)) {
+      // Lanes in scene order, whatever order the partitions left them in (as Embree's leaves).
+      std::sort(prims + r.begin, prims + r.end, [](const PrimRef& a, const PrimRef& b) {
+        return a.geom() != b.geom() ? a.geom() < b.geom() : a.prim() < b.prim();
+      });
       return {r.begin, n};
+    }
 
     std::array<Record, kWideArity> children;
     children[0] = cur;
@@ -96,6 +101,10 @@ struct Builder {
       children[count++] = record(right);
     }
 
+    // Largest first, as Embree orders a node's children (visit order comes from the per-octant
+    // ranks; only order-free traversal, `filter`, follows the slots).
+    std::stable_sort(children.begin(), children.begin() + count,
+                     [](const Record& a, const Record& b) { return a.range.size() > b.range.size(); });
     const auto it = nodes.grow_by(1);
     const auto index = std::uint32_t(it - nodes.begin());
     std::array<BuildChild, kWideArity> built{};
