@@ -1,7 +1,8 @@
 #pragma once
-// What Pierce's two uses of Embree's generic builder (rtcBuildBVH) share: the builder device and
-// the primitives' float boxes. Embree only chooses the partition; both builders recompute every
-// box exactly in precision T afterwards.
+// Float boxes for the builders that partition on them (Embree's rtcBuildBVH for the binary BVH,
+// Pierce's binned builder for the wide one), and what the rtcBuildBVH call needs: the device and
+// its arguments. The float boxes only choose the partition; both builders recompute every box
+// exactly in precision T afterwards.
 #include <embree3/rtcore.h>
 
 #include <cmath>

@@ -64,7 +64,7 @@ struct PrimRange {
 };
 
 // Leaf cost in 8-lane blocks: a block tests its eight lanes at once.
-inline float blocks_of(std::uint32_t n) { return float((n + 7) >> 3); }
+inline double blocks_of(std::uint32_t n) { return double((n + 7) >> 3); }
 
 // Centroid to bin: fewer bins for small ranges (4 + n / 20, at most kMaxBins); an axis along
 // which the centroids do not spread gets scale 0 (every centroid in bin 0: no plane).
@@ -91,7 +91,9 @@ struct BinMapping {
 
 // A plane: primitives whose centroid bin along `axis` is below `bin` go left.
 struct SahSplit {
-  float cost = std::numeric_limits<float>::infinity();  // sum of area x blocks over both sides
+  // Sum of area x blocks over both sides, in double: with coordinates up to 2^59 a float area
+  // times a block count could overflow.
+  double cost = std::numeric_limits<double>::infinity();
   int axis = -1, bin = 0;
   bool valid() const { return axis >= 0; }
 };
@@ -117,7 +119,7 @@ struct Bins {
     SahSplit s;
     for (int a = 0; a < 3; ++a) {
       if (m.scale[a] == 0.0f) continue;
-      float right_cost[BinMapping::kMaxBins];
+      double right_cost[BinMapping::kMaxBins];
       std::uint32_t right_count[BinMapping::kMaxBins];
       Box4 acc;
       std::uint32_t n = 0;
@@ -125,7 +127,7 @@ struct Bins {
         acc.extend(box[a][k]);
         n += count[a][k];
         right_count[k] = n;
-        right_cost[k] = n > 0 ? acc.half_area() * blocks_of(n) : 0.0f;
+        right_cost[k] = n > 0 ? double(acc.half_area()) * blocks_of(n) : 0.0;
       }
       acc = Box4{};
       n = 0;
@@ -133,7 +135,7 @@ struct Bins {
         acc.extend(box[a][k - 1]);
         n += count[a][k - 1];
         if (n == 0 || right_count[k] == 0) continue;
-        const float cost = acc.half_area() * blocks_of(n) + right_cost[k];
+        const double cost = double(acc.half_area()) * blocks_of(n) + right_cost[k];
         if (cost < s.cost) s.cost = cost, s.axis = a, s.bin = k;
       }
     }

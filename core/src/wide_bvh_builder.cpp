@@ -14,6 +14,7 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <stdexcept>
 #include <type_traits>
 #include <vector>
 
@@ -75,8 +76,8 @@ struct Builder {
   BuildChild build(const Record& cur) {
     const PrimRange& r = cur.range;
     const std::uint32_t n = r.size();
-    const float area = r.geom.half_area();
-    if (n <= min_leaf || (n <= max_leaf && area * detail::blocks_of(n) <= traversal_cost * area + cur.split.cost)) {
+    const double area = r.geom.half_area();
+    if (n <= min_leaf || (n <= max_leaf && area * detail::blocks_of(n) <= double(traversal_cost) * area + cur.split.cost)) {
       // Lanes in scene order, whatever order the partitions left them in (as Embree's leaves).
       std::sort(prims + r.begin, prims + r.end, [](const PrimRef& a, const PrimRef& b) {
         return a.geom() != b.geom() ? a.geom() < b.geom() : a.prim() < b.prim();
@@ -257,6 +258,8 @@ void build_binned(const Scene& scene, const BvhBuildOptions& opts, WideBvh<T>& o
   const auto max_leaf = std::uint32_t(std::clamp(opts.wide_max_leaf_size, 1, 32));
   Builder builder{prims.data(), std::min<std::uint32_t>(kBlockLanes, max_leaf), max_leaf, opts.traversal_cost, {}};
   const BuildChild root = builder.build(builder.record(all));
+  const std::uint32_t placed = root.is_leaf() ? root.count : builder.nodes[root.first].triangles_below;
+  if (placed != prims.size()) throw std::logic_error("wide BVH build: the leaves do not hold every triangle once");
   Writer<T>{scene, prims.data(), builder.nodes, out}.write_all(root);
 }
 
