@@ -12,6 +12,9 @@
 #include <cstring>
 #include <limits>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
 namespace pierce::detail {
 
 using Float4 = float __attribute__((vector_size(16)));
@@ -113,6 +116,14 @@ struct Bins {
     }
   }
 
+  void merge(const Bins& other, int bins) {
+    for (int a = 0; a < 3; ++a)
+      for (int k = 0; k < bins; ++k) {
+        box[a][k].extend(other.box[a][k]);
+        count[a][k] += other.count[a][k];
+      }
+  }
+
   // The cheapest plane: per axis, a right-to-left sweep of areas and counts, then a left-to-right
   // one; both sides must hold primitives. Ties keep the lower axis and bin.
   SahSplit best(const BinMapping& m) const {
@@ -143,10 +154,28 @@ struct Bins {
   }
 };
 
+// Ranges of at least this many references are binned in parallel (the top of the tree, where
+// there are not yet subtrees enough to keep the threads busy). Bins merge by min, max and sums, so
+// the result is the same for any split of the work.
+inline constexpr std::uint32_t kParallelBinning = 1u << 16;
+
 inline SahSplit find_split(const PrimRef* prims, const PrimRange& r) {
   const BinMapping m(r.size(), r.cent);
-  Bins bins;
-  bins.add(prims, r.begin, r.end, m);
+  if (r.size() < kParallelBinning) {
+    Bins bins;
+    bins.add(prims, r.begin, r.end, m);
+    return bins.best(m);
+  }
+  const Bins bins = tbb::parallel_reduce(
+      tbb::blocked_range<std::uint32_t>(r.begin, r.end, kParallelBinning / 4), Bins{},
+      [&](const tbb::blocked_range<std::uint32_t>& chunk, Bins b) {
+        b.add(prims, chunk.begin(), chunk.end(), m);
+        return b;
+      },
+      [&](Bins a, const Bins& b) {
+        a.merge(b, m.bins);
+        return a;
+      });
   return bins.best(m);
 }
 

@@ -1,9 +1,12 @@
 // The kernels on Pierce's (wide) BVH must be exact for any valid tree, not only for the SAH builder's
 // trees: random topologies with heavily overlapping nodes (and tiny leaves, and huge ones) stress
 // the culling and release rules, and each kernel must still return the brute-force list.
+#include <cstring>
 #include <map>
 #include <numeric>
 #include <random>
+
+#include <tbb/global_control.h>
 
 #include "pierce/bvh_builder.h"
 #include "test_util.h"
@@ -329,6 +332,27 @@ TEST(BvhLayouts, DirectWideBuildOfCoincidentStack) {
     check_direct_build(scene, ex, opts);
     const WideBvhf bvh = build_wide_bvh<float>(scene, opts);
     EXPECT_LE(bvh.depth, 12u);  // 3800 triangles: halving by index is at most 12 levels
+  }
+}
+
+// Above 65 536 references a range is binned in parallel; the bins merge by min, max and sums, and
+// every subtree is partitioned by one task, so the BVH is the same bit for bit at any thread count.
+TEST(BvhLayouts, BinnedBuildIsTheSameForAnyThreadCount) {
+  const Scene scene = gen::to_scene({gen::blob(6)});  // 81 920 triangles
+  auto build_with = [&](std::size_t threads) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    return build_wide_bvh<float>(scene);
+  };
+  const WideBvhf one = build_with(1);
+  for (const std::size_t threads : {2, 4}) {
+    SCOPED_TRACE(testing::Message() << threads << " threads");
+    const WideBvhf many = build_with(threads);
+    ASSERT_EQ(one.nodes.size(), many.nodes.size());
+    ASSERT_EQ(one.blocks.size(), many.blocks.size());
+    EXPECT_EQ(one.root, many.root);
+    EXPECT_EQ(one.depth, many.depth);
+    EXPECT_EQ(std::memcmp(one.nodes.data(), many.nodes.data(), one.nodes.size() * sizeof(WideNode<float>)), 0);
+    EXPECT_EQ(std::memcmp(one.blocks.data(), many.blocks.data(), one.blocks.size() * sizeof(TriBlock<float>)), 0);
   }
 }
 
