@@ -52,21 +52,6 @@ bool monitor(void* user, ssize_t bytes, bool /*post*/) {
   return true;
 }
 
-RTCRayHit make_rayhit(const Ray& ray, float tnear) {
-  RTCRayHit rh;
-  rh.ray.org_x = float(ray.org.x), rh.ray.org_y = float(ray.org.y), rh.ray.org_z = float(ray.org.z);
-  rh.ray.dir_x = float(ray.dir.x), rh.ray.dir_y = float(ray.dir.y), rh.ray.dir_z = float(ray.dir.z);
-  rh.ray.tnear = tnear;
-  rh.ray.tfar = float(ray.tmax);
-  rh.ray.time = 0.f;
-  rh.ray.mask = 0xFFFFFFFFu;  // Debian's Embree is built with ray masks
-  rh.ray.id = 0;
-  rh.ray.flags = 0;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  return rh;
-}
-
 Hit to_hit(const RTCRayHit& rh) {
   Hit h;
   h.t = rh.ray.tfar;
@@ -102,7 +87,7 @@ EmbreeReference::~EmbreeReference() {
 }
 
 bool EmbreeReference::first_hit(const Ray& ray, Hit& out) const {
-  RTCRayHit rh = make_rayhit(ray, float(std::max(0.0, ray.tmin)));
+  RTCRayHit rh = native_rayhit(ray, float(std::max(0.0, ray.tmin)));
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   rtcIntersect1(scene_, &ctx, &rh);
@@ -117,7 +102,7 @@ void EmbreeReference::all_hits(const Ray& ray, std::size_t max_hits, std::vector
   rtcInitIntersectContext(&fc.ctx);
   fc.ctx.filter = record_and_reject;
   fc.hits = &out;
-  RTCRayHit rh = make_rayhit(ray, float(std::max(0.0, ray.tmin)));
+  RTCRayHit rh = native_rayhit(ray, float(std::max(0.0, ray.tmin)));
   rtcIntersect1(scene_, &fc.ctx, &rh);
   std::sort(out.begin() + std::ptrdiff_t(begin), out.end(), lex_less);
   // The same triangle reported twice (Embree may visit a primitive from two leaves).
@@ -135,7 +120,7 @@ void EmbreeReference::restart_hits(const Ray& ray, std::size_t max_hits, std::ve
   fc.after.geom = fc.after.prim = 0;
   float tnear = float(std::max(0.0, ray.tmin));
   for (std::size_t n = 0; max_hits == 0 || n < max_hits; ++n) {
-    RTCRayHit rh = make_rayhit(ray, tnear);
+    RTCRayHit rh = native_rayhit(ray, tnear);
     rtcIntersect1(scene_, &fc.ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return;
     out.push_back(to_hit(rh));

@@ -62,8 +62,6 @@ void embree_exact_intersect(const RTCIntersectFunctionNArguments* args) {
 
 }  // namespace detail
 
-namespace {
-// An Embree query from org along dir over [tnear, tfar] (floats, as Embree takes them).
 RTCRayHit native_rayhit(Vec3d org, Vec3d dir, float tnear, float tfar) {
   RTCRayHit rh;
   rh.ray.org_x = float(org.x), rh.ray.org_y = float(org.y), rh.ray.org_z = float(org.z);
@@ -71,7 +69,7 @@ RTCRayHit native_rayhit(Vec3d org, Vec3d dir, float tnear, float tfar) {
   rh.ray.tnear = tnear;
   rh.ray.tfar = tfar;
   rh.ray.time = 0.f;
-  rh.ray.mask = 0xFFFFFFFFu;  // Debian's Embree is built with ray masks
+  rh.ray.mask = 0xFFFFFFFFu;
   rh.ray.id = 0;
   rh.ray.flags = 0;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
@@ -79,9 +77,7 @@ RTCRayHit native_rayhit(Vec3d org, Vec3d dir, float tnear, float tfar) {
   return rh;
 }
 
-// A query of Embree's native triangles for `ray` from tnear.
 RTCRayHit native_rayhit(const Ray& ray, float tnear) { return native_rayhit(ray.org, ray.dir, tnear, float(ray.tmax)); }
-}  // namespace
 
 EmbreeExactBase::EmbreeExactBase(const EmbreeAccel& acc, HitOrder order, EmbreeQuery::Mode mode, bool count)
     : acc_(&acc), scene_(acc.exact()), count_(count) {

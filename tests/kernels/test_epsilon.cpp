@@ -104,12 +104,7 @@ TEST(Epsilon, NeverReportsDegenerateTriangles) {
   rtcCommitScene(plain);
   int plain_hits_on_line = 0;
   for (const Ray& r : rays) {
-    RTCRayHit rh{};
-    rh.ray.org_x = float(r.org.x), rh.ray.org_y = float(r.org.y), rh.ray.org_z = float(r.org.z);
-    rh.ray.dir_x = float(r.dir.x), rh.ray.dir_y = float(r.dir.y), rh.ray.dir_z = float(r.dir.z);
-    rh.ray.tnear = 0.f, rh.ray.tfar = std::numeric_limits<float>::infinity();
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.hit.geomID = rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    RTCRayHit rh = native_rayhit(r.org, r.dir, 0.f, std::numeric_limits<float>::infinity());
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     rtcIntersect1(plain, &ctx, &rh);

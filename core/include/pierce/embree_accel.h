@@ -13,6 +13,7 @@
 #include <mutex>
 
 #include "pierce/bvh.h"
+#include "pierce/ray.h"
 #include "pierce/scene.h"
 
 namespace pierce {
@@ -27,6 +28,12 @@ enum class DegenerateTriangles { keep, leave_out };
 // per Pierce geometry, attached in order so that Embree's geometry and primitive ids are Pierce's.
 // Does not commit `target`.
 void attach_native_triangles(RTCDevice device, RTCScene target, const Scene& scene, DegenerateTriangles degenerate);
+
+// An Embree query from `org` along `dir` over [tnear, tfar] (floats, as Embree takes them), every
+// field set: mask all ones (Debian's Embree is built with ray masks), no hit yet.
+RTCRayHit native_rayhit(Vec3d org, Vec3d dir, float tnear, float tfar);
+// The same for `ray`, from tnear to ray.tmax.
+RTCRayHit native_rayhit(const Ray& ray, float tnear);
 
 // Each scene is built when first asked for (thread-safe), so a kernel builds only what it uses: the
 // epsilon kernel neither the exact scene nor the float BVH whose triangles that scene holds.
