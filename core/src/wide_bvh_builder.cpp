@@ -12,11 +12,9 @@
 // allows (docs/BENCHMARKS.md, fourteenth session).
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cstdint>
 #include <stdexcept>
 #include <type_traits>
-#include <vector>
 
 #include <tbb/concurrent_vector.h>
 #include <tbb/parallel_for.h>
@@ -253,6 +251,7 @@ template <typename T>
 void build_binned(const Scene& scene, const BvhBuildOptions& opts, WideBvh<T>& out) {
   HugePageVector<PrimRef> prims = prim_refs<T>(scene);
   if (prims.empty()) return;
+  detail::check_block_count((prims.size() + kBlockLanes - 1) / kBlockLanes);  // before 32-bit ranges could wrap
   PrimRange all{0, std::uint32_t(prims.size()), {}, {}};
   for (const PrimRef& p : prims) all.geom.extend(p.lo, p.hi), all.cent.extend(p.centroid2());
   const auto max_leaf = std::uint32_t(std::clamp(opts.wide_max_leaf_size, 1, 32));
