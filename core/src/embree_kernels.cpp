@@ -62,23 +62,6 @@ void embree_exact_intersect(const RTCIntersectFunctionNArguments* args) {
 
 }  // namespace detail
 
-RTCRayHit native_rayhit(Vec3d org, Vec3d dir, float tnear, float tfar) {
-  RTCRayHit rh;
-  rh.ray.org_x = float(org.x), rh.ray.org_y = float(org.y), rh.ray.org_z = float(org.z);
-  rh.ray.dir_x = float(dir.x), rh.ray.dir_y = float(dir.y), rh.ray.dir_z = float(dir.z);
-  rh.ray.tnear = tnear;
-  rh.ray.tfar = tfar;
-  rh.ray.time = 0.f;
-  rh.ray.mask = 0xFFFFFFFFu;
-  rh.ray.id = 0;
-  rh.ray.flags = 0;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  return rh;
-}
-
-RTCRayHit native_rayhit(const Ray& ray, float tnear) { return native_rayhit(ray.org, ray.dir, tnear, float(ray.tmax)); }
-
 EmbreeExactBase::EmbreeExactBase(const EmbreeAccel& acc, HitOrder order, EmbreeQuery::Mode mode, bool count)
     : acc_(&acc), scene_(acc.exact()), count_(count) {
   q_.mode = mode;

@@ -30,10 +30,26 @@ enum class DegenerateTriangles { keep, leave_out };
 void attach_native_triangles(RTCDevice device, RTCScene target, const Scene& scene, DegenerateTriangles degenerate);
 
 // An Embree query from `org` along `dir` over [tnear, tfar] (floats, as Embree takes them), every
-// field set: mask all ones (Debian's Embree is built with ray masks), no hit yet.
-RTCRayHit native_rayhit(Vec3d org, Vec3d dir, float tnear, float tfar);
+// field set: mask all ones (Debian's Embree is built with ray masks), no hit yet. Inline: it is
+// part of every epsilon query and of the bench's plain-Embree rows, which must not pay a call.
+inline RTCRayHit native_rayhit(Vec3d org, Vec3d dir, float tnear, float tfar) {
+  RTCRayHit rh;
+  rh.ray.org_x = float(org.x), rh.ray.org_y = float(org.y), rh.ray.org_z = float(org.z);
+  rh.ray.dir_x = float(dir.x), rh.ray.dir_y = float(dir.y), rh.ray.dir_z = float(dir.z);
+  rh.ray.tnear = tnear;
+  rh.ray.tfar = tfar;
+  rh.ray.time = 0.f;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
 // The same for `ray`, from tnear to ray.tmax.
-RTCRayHit native_rayhit(const Ray& ray, float tnear);
+inline RTCRayHit native_rayhit(const Ray& ray, float tnear) {
+  return native_rayhit(ray.org, ray.dir, tnear, float(ray.tmax));
+}
 
 // Each scene is built when first asked for (thread-safe), so a kernel builds only what it uses: the
 // epsilon kernel neither the exact scene nor the float BVH whose triangles that scene holds.
