@@ -24,8 +24,9 @@ inline Float4 min4(Float4 a, Float4 b) { return a < b ? a : b; }
 inline Float4 max4(Float4 a, Float4 b) { return a > b ? a : b; }
 
 // A triangle as the builder moves it: its float box (rounded outward) in lanes 0-2, and in lane 3
-// its geometry (lo) and primitive (hi) index as bits. 32 bytes, partitioned in place.
-struct alignas(32) PrimRef {
+// its geometry (lo) and primitive (hi) index as bits. 32 bytes, partitioned in place; 16-byte
+// aligned (no over-aligned by-value parameters in std::sort).
+struct PrimRef {
   Float4 lo, hi;
   std::uint32_t geom() const { return bits(lo[3]); }
   std::uint32_t prim() const { return bits(hi[3]); }
