@@ -241,7 +241,7 @@ bool build_with_embree(const std::vector<Ref<T>>& refs, const BvhBuildOptions& o
   const RTCDevice device = detail::builder_device();
   if (device == nullptr) return false;
   HugePageVector<RTCBuildPrimitive> prims(refs.size());
-  for (std::size_t i = 0; i < refs.size(); ++i) prims[i] = detail::build_primitive(refs[i].box, std::uint32_t(i));
+  for (std::size_t i = 0; i < refs.size(); ++i) prims[i] = detail::build_primitive(refs[i].box, 0, std::uint32_t(i));
   RTCBVH bvh = rtcNewBVH(device);
   RTCBuildArguments args = detail::build_arguments(bvh, prims, opts.traversal_cost, embree_create_node,
                                                    embree_set_children, embree_set_bounds, embree_create_leaf);

@@ -31,10 +31,11 @@ inline float round_up(double x) {
   return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
 }
 
+// `b` rounded outward to float, with two ids in the fourth lanes (Embree's layout: geomID, primID).
 template <typename T>
-RTCBuildPrimitive build_primitive(const BBox<T>& b, std::uint32_t id) {
-  return {round_down(double(b.lo.x)), round_down(double(b.lo.y)), round_down(double(b.lo.z)), 0,
-          round_up(double(b.hi.x)),   round_up(double(b.hi.y)),   round_up(double(b.hi.z)),   id};
+RTCBuildPrimitive build_primitive(const BBox<T>& b, std::uint32_t geom, std::uint32_t prim) {
+  return {round_down(double(b.lo.x)), round_down(double(b.lo.y)), round_down(double(b.lo.z)), geom,
+          round_up(double(b.hi.x)),   round_up(double(b.hi.y)),   round_up(double(b.hi.z)),   prim};
 }
 
 // Arguments for a build over `prims` (ids = their indices) into `bvh` with Pierce's callbacks, at

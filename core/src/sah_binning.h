@@ -5,8 +5,7 @@
 // the partition; the writer recomputes every box exactly in the BVH's precision.
 //
 // Vectors are GCC/Clang vector extensions (4 floats: x, y, z and a lane that carries an id), so the
-// code is the same on every target and compiles to SSE on any x86-64, without dispatch: binning is
-// bound by the bins' load-update-store chains, not by vector width.
+// code is the same on every target and compiles to SSE on any x86-64, without run-time dispatch.
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
@@ -34,11 +33,6 @@ struct PrimRef {
     std::uint32_t u;
     std::memcpy(&u, &f, sizeof u);
     return u;
-  }
-  static float as_float(std::uint32_t u) {
-    float f;
-    std::memcpy(&f, &u, sizeof f);
-    return f;
   }
   // Twice the centroid, with the id lane zeroed (never a denormal in arithmetic).
   Float4 centroid2() const {

@@ -12,7 +12,9 @@
 // allows (docs/BENCHMARKS.md, fourteenth session).
 #include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <stdexcept>
 #include <type_traits>
 
@@ -206,6 +208,11 @@ struct Writer {
   }
 };
 
+// PrimRef has Embree's build-primitive layout (box corners with geomID and primID in the fourth
+// lanes), so the one outward rounding of embree_build_support.h fills it.
+static_assert(sizeof(PrimRef) == sizeof(RTCBuildPrimitive) && offsetof(RTCBuildPrimitive, geomID) == 12 &&
+              offsetof(RTCBuildPrimitive, upper_x) == 16 && offsetof(RTCBuildPrimitive, primID) == 28);
+
 // The scene's non-degenerate triangles (in T) as build references, boxes rounded outward to float.
 template <typename T>
 HugePageVector<PrimRef> prim_refs(const Scene& scene) {
@@ -234,10 +241,8 @@ HugePageVector<PrimRef> prim_refs(const Scene& scene) {
                             r.lo = detail::Float4{} + 1.0f, r.hi = detail::Float4{} - 1.0f;
                             continue;
                           }
-                          r.lo = detail::Float4{detail::round_down(double(b.lo.x)), detail::round_down(double(b.lo.y)),
-                                  detail::round_down(double(b.lo.z)), PrimRef::as_float(g)};
-                          r.hi = detail::Float4{detail::round_up(double(b.hi.x)), detail::round_up(double(b.hi.y)),
-                                  detail::round_up(double(b.hi.z)), PrimRef::as_float(p)};
+                          const RTCBuildPrimitive rounded = detail::build_primitive(b, g, p);
+                          std::memcpy(&r, &rounded, sizeof r);
                         }
                       });
     first += geo.triangles.size();
