@@ -320,9 +320,12 @@ inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Conta
       // stack keeps the others). The others are prefetched; the nearest is read at once anyway.
       if constexpr (Policy::kAnyOrder) pending.ensure_room();
       NodeEntry<T>* const pushed = pending.top();
-      const std::uint32_t n = ops.template push_hits<!Policy::kAnyOrder>(node, p.lo(), p.hi(), pushed, cur);
+      std::uint32_t others;
+      const std::uint32_t n = ops.template push_hits<!Policy::kAnyOrder>(node, p.lo(), p.hi(), pushed, cur, others);
       if (n == 0) continue;
-      detail_prefetch(nodes, blocks, pushed, n - 1);
+      // The addresses come from the node, not from the entries just stored: a load from a wide
+      // store still in flight waits for it.
+      detail_prefetch(nodes, blocks, others, node.child);
       if constexpr (Policy::kAnyOrder) {
         // Delayed descent: where the order does not matter, the node processed next is the one
         // on top of the stack before this node's children, asked for (prefetched) a step ago,

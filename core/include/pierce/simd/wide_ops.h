@@ -80,15 +80,26 @@ struct ScalarOps {
   // so the loop can descend into it without reading it back); returns how many. kRanked false: the
   // caller does not care in which order (the SIMD levels then store them in slot order, unranked;
   // here ranking costs nothing extra).
+  // `others`: the slots of the stored children other than the nearest, for the caller's prefetch
+  // (read from the node, which is in the cache, rather than from the entries just stored).
   template <bool kRanked = true>
-  std::uint32_t push_hits(const WideNode<T>& n, T lo, T hi, NodeEntry<T>* top, NodeEntry<T>& nearest) const {
+  std::uint32_t push_hits(const WideNode<T>& n, T lo, T hi, NodeEntry<T>* top, NodeEntry<T>& nearest,
+                          std::uint32_t& others) const {
     T tn[kWideArity];
     NodeRef child[kWideArity];
     const std::uint32_t mask = node_hits(n, lo, hi, tn, child);
+    const std::uint32_t order = n.order[oct];
     std::uint32_t count = 0;
+    others = 0;
     for (int k = kWideArity - 1; k >= 0; --k)
-      if (mask >> k & 1) top[count++] = {tn[k], child[k]};
-    if (count > 0) nearest = top[count - 1];
+      if (mask >> k & 1) {
+        top[count++] = {tn[k], child[k]};
+        others |= 1u << WideNode<T>::slot_at_rank(order, k);
+      }
+    if (count > 0) {
+      nearest = top[count - 1];
+      others &= ~(1u << WideNode<T>::slot_at_rank(order, __builtin_ctz(mask)));
+    }
     return count;
   }
   // Every lane to the scalar test.
@@ -134,6 +145,14 @@ __attribute__((target("avx2"))) inline __m256i rank_slots(std::uint32_t order) {
 __attribute__((target("avx2"))) inline __m256i rank_slots_far_to_near(std::uint32_t order) {
   const __m256i shifts = _mm256_setr_epi32(21, 18, 15, 12, 9, 6, 3, 0);
   return _mm256_and_si256(_mm256_srlv_epi32(_mm256_set1_epi32(int(order)), shifts), _mm256_set1_epi32(7));
+}
+
+// The slot of push_hits' nearest child, stored in lane `lane` (far to near by rank_slots_far_to_near
+// where kRanked, else in slot order).
+template <bool kRanked>
+inline int nearest_slot(std::uint32_t order, int lane) {
+  if constexpr (kRanked) return int(order >> (3 * (kWideArity - 1 - lane)) & 7u);
+  return lane;
 }
 
 // The eight (tn, child) entries of a node in lane order, as NodeEntry<float> pairs: entries 0-3 in
@@ -377,7 +396,8 @@ struct Avx2Ops {
   // ScalarOps::push_hits: two left-packed stores of four entries each.
   template <bool kRanked = true>
   __attribute__((target("avx2"))) std::uint32_t push_hits(const WideNode<float>& n, float lo, float hi,
-                                                          NodeEntry<float>* top, NodeEntry<float>& nearest) const {
+                                                          NodeEntry<float>* top, NodeEntry<float>& nearest,
+                                                          std::uint32_t& others) const {
     const std::uint32_t order = n.order[ray.oct];
     __m256 tn;
     const __m256 pass = slot_hits(n, order, lo, hi, tn);
@@ -386,6 +406,7 @@ struct Avx2Ops {
     if ((slots & (slots - 1)) == 0) {  // one child passes (most nodes of a first-hit ray): nothing to store
       const int s = __builtin_ctz(slots);
       nearest = {lane_tn(tn, s), n.child[s]};
+      others = 0;
       return 1;
     }
     __m256i child = _mm256_load_si256(reinterpret_cast<const __m256i*>(n.child));
@@ -398,7 +419,9 @@ struct Avx2Ops {
     } else {
       mask = slots;
     }
-    nearest = lane_entry(tn, child, 31 - __builtin_clz(mask));
+    const int near_lane = 31 - __builtin_clz(mask);
+    others = slots & ~(1u << nearest_slot<kRanked>(order, near_lane));
+    nearest = lane_entry(tn, child, near_lane);
     __m256i first, second;
     entry_pairs(tn, child, first, second);
     const std::uint32_t m0 = mask & 15u, m1 = mask >> 4;
@@ -445,7 +468,8 @@ struct Avx512Ops {
   template <bool kRanked = true>
   __attribute__((target(PIERCE_AVX512_TARGET))) std::uint32_t push_hits(const WideNode<float>& n, float lo, float hi,
                                                                         NodeEntry<float>* top,
-                                                                        NodeEntry<float>& nearest) const {
+                                                                        NodeEntry<float>& nearest,
+                                                                        std::uint32_t& others) const {
     const std::uint32_t order = n.order[ray.oct];
     __m256 tn;
     const __mmask8 ok = slot_hits(n, order, lo, hi, tn);
@@ -453,6 +477,7 @@ struct Avx512Ops {
     if ((ok & (ok - 1)) == 0) {  // one child passes (most nodes of a first-hit ray): nothing to store
       const int s = __builtin_ctz(ok);
       nearest = {lane_tn(tn, s), n.child[s]};
+      others = 0;
       return 1;
     }
     __m256i child = _mm256_load_si256(reinterpret_cast<const __m256i*>(n.child));
@@ -463,7 +488,9 @@ struct Avx512Ops {
       tn = _mm256_permutexvar_ps(rank, tn);
       child = _mm256_permutexvar_epi32(rank, child);
     }
-    nearest = lane_entry(tn, child, 31 - __builtin_clz(mask));
+    const int near_lane = 31 - __builtin_clz(mask);
+    others = std::uint32_t(ok) & ~(1u << nearest_slot<kRanked>(order, near_lane));
+    nearest = lane_entry(tn, child, near_lane);
     __m256i first, second;
     entry_pairs(tn, child, first, second);
     const auto m0 = __mmask8(mask & 15u), m1 = __mmask8(mask >> 4);
