@@ -348,16 +348,16 @@ struct SimdRay {
     const __m256 sum = _mm256_add_ps(_mm256_add_ps(e[0], e[1]), e[2]);
     const __m256 finite = _mm256_cmp_ps(_mm256_andnot_ps(_mm256_set1_ps(-0.0f), sum),
                                         _mm256_set1_ps(std::numeric_limits<float>::infinity()), _CMP_LT_OQ);
-    __m256 any_zero = _mm256_cmp_ps(e[0], zero, _CMP_EQ_OQ);
-    __m256 all_pos = _mm256_cmp_ps(e[0], zero, _CMP_GT_OQ), all_neg = _mm256_cmp_ps(e[0], zero, _CMP_LT_OQ);
-    for (int k = 1; k < 3; ++k) {
-      any_zero = _mm256_or_ps(any_zero, _mm256_cmp_ps(e[k], zero, _CMP_EQ_OQ));
-      all_pos = _mm256_and_ps(all_pos, _mm256_cmp_ps(e[k], zero, _CMP_GT_OQ));
-      all_neg = _mm256_and_ps(all_neg, _mm256_cmp_ps(e[k], zero, _CMP_LT_OQ));
-    }
+    const __m256 any_zero = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(e[0], zero, _CMP_EQ_OQ),
+                                                      _mm256_cmp_ps(e[1], zero, _CMP_EQ_OQ)),
+                                        _mm256_cmp_ps(e[2], zero, _CMP_EQ_OQ));
+    // Sign bits that differ from e[0]'s. Outside the exact lanes every edge function is finite and
+    // non-zero (a finite sum has no infinite or NaN term), so "all three of one sign" is "no sign
+    // bit differs", as the ordered compares > 0 and < 0 would decide it.
+    const __m256 sign_differs = _mm256_or_ps(_mm256_xor_ps(e[0], e[1]), _mm256_xor_ps(e[0], e[2]));
     const std::uint32_t exact =
         b.valid & (std::uint32_t(_mm256_movemask_ps(any_zero)) | ~std::uint32_t(_mm256_movemask_ps(finite)));
-    const std::uint32_t inside = b.valid & std::uint32_t(_mm256_movemask_ps(_mm256_or_ps(all_pos, all_neg))) & ~exact;
+    const std::uint32_t inside = b.valid & ~std::uint32_t(_mm256_movemask_ps(sign_differs)) & ~exact;
     if (inside == 0) return {exact, 0};
     __m256 overflow;
     const auto hit = std::uint32_t(_mm256_movemask_ps(finish(b, e, z, lo, hi, out, overflow)));
