@@ -4,7 +4,8 @@
 //    distances, child references) comes in the node's near-to-far order for the ray's octant;
 //  - push_hits: the same test, with the children that pass stored onto a depth-first stack far to
 //    near in two SIMD stores (compressed with AVX-512, left-packed by a table with AVX2), so the
-//    loop neither branches per child nor sorts;
+//    loop neither branches per child nor sorts; it also gives the slots of the stored children
+//    other than the nearest, so the loop prefetches them by addresses read from the node;
 //  - tri_test: the triangle test of a leaf block's eight lanes. A lane whose edge functions are
 //    non-zero and finite has exact signs already and is finished in SIMD (det, t, the clamp into
 //    the triangle's slab interval, the range); only lanes with a zero or non-finite edge function
@@ -148,10 +149,10 @@ __attribute__((target("avx2"))) inline __m256i rank_slots_far_to_near(std::uint3
 }
 
 // The slot of push_hits' nearest child, stored in lane `lane` (far to near by rank_slots_far_to_near
-// where kRanked, else in slot order).
+// where kRanked, so lane k holds rank 7 - k; else in slot order).
 template <bool kRanked>
 inline int nearest_slot(std::uint32_t order, int lane) {
-  if constexpr (kRanked) return int(order >> (3 * (kWideArity - 1 - lane)) & 7u);
+  if constexpr (kRanked) return WideNode<float>::slot_at_rank(order, kWideArity - 1 - lane);
   return lane;
 }
 
