@@ -66,9 +66,9 @@ TEST(TraversePolicy, CallbacksSeeEveryNodeAndHit) {
   EXPECT_GT(rays_with_hits, 50u);
 }
 
-// A policy that takes every hit of a fixed range is descended into with a delay (the node on top
-// of the stack before the new children goes first), which can outgrow a depth-first stack: from a
-// one-entry stack, the buffer must grow and the hits and visited nodes stay the filter's.
+// A policy that takes every hit of a fixed range is traversed breadth first (FifoCursor), which can
+// outgrow a depth-first stack: from a one-entry stack, the buffer must grow and the hits and visited
+// nodes stay the filter's.
 struct GatherAnyOrder : GatherWithCallbacks {
   static constexpr bool kAnyOrder = true;
   using GatherWithCallbacks::GatherWithCallbacks;

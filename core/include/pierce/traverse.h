@@ -17,6 +17,7 @@
 // The traversal is written once and compiled for each instruction-set level (simd_level.h):
 // traverse() picks the level's instantiation; the SIMD ones are compiled with the level's target
 // attribute and flattened, so the node and leaf tests inline into the loop.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -33,7 +34,7 @@ namespace pierce {
 
 // Depth-first pending nodes, in a buffer sized once from the BVH's depth (WideBvh::stack_capacity):
 // no allocation and no capacity check per push (but for a kAnyOrder policy's, see
-// StackCursor::ensure_room). The traversal works on the raw buffer.
+// FifoCursor::ensure_room). The traversal works on the raw buffer.
 template <typename T>
 class NodeStack {
  public:
@@ -116,7 +117,7 @@ struct TraversalPolicy {
   static constexpr bool kSuspends = false;
   // True if nothing the policy does depends on the order in which nodes are visited (it takes every
   // hit in a range that never changes): children are then pushed unranked, in slot order, and
-  // descended into with a delay (traverse_with).
+  // visited breadth first (FifoCursor).
   static constexpr bool kAnyOrder = false;
   void culled(NodeEntry<T> /*node*/) {}
   template <class Pending>
@@ -228,16 +229,6 @@ class StackCursor {
   void push(NodeEntry<T> e) { base_[sp_++] = e; }
   NodeEntry<T>* top() { return base_ + sp_; }
   void grow(std::size_t n) { sp_ += n; }
-  // Room for the next node's children: only a traversal that does not run depth first (the
-  // delayed descent below) can need more than WideBvh::stack_capacity(). Doubles the buffer where
-  // it must (at most a few times in a kernel's life: the buffer keeps its size).
-  void ensure_room() {
-    if (sp_ + 2 * kWideArity <= cap_) [[likely]]
-      return;
-    s_.set_size(sp_);
-    s_.reserve(2 * cap_);
-    base_ = s_.data(), cap_ = s_.capacity();
-  }
   const NodeStack<T>& sync() {
     s_.set_size(sp_);
     return s_;
@@ -247,6 +238,51 @@ class StackCursor {
   NodeStack<T>& s_;
   NodeEntry<T>* base_;
   std::size_t sp_, cap_;
+};
+
+// The pending nodes of a kAnyOrder policy, first in first out, in the same buffer: pushed at the
+// tail, taken from the head. Where the order does not matter, the node processed next is then the
+// one asked for (prefetched) longest ago, so the traversal waits on memory as little as it can.
+// Every entry is written once per ray (the head is not reused), so the buffer holds the nodes a
+// ray visits, not a depth-first bound: it is compacted or doubled where it must be (ensure_room;
+// the buffer keeps its size, so that happens at most a few times in a kernel's life).
+template <typename T>
+class FifoCursor {
+ public:
+  static constexpr bool kOrdered = false;
+  explicit FifoCursor(NodeStack<T>& s) : s_(s), base_(s.data()), tail_(s.size()), cap_(s.capacity()) {}
+  bool empty() const { return head_ == tail_; }
+  T next_tn() const { return base_[head_].tn; }
+  NodeEntry<T> pop() { return base_[head_++]; }
+  void push(NodeEntry<T> e) { base_[tail_++] = e; }
+  NodeEntry<T>* top() { return base_ + tail_; }
+  void grow(std::size_t n) { tail_ += n; }
+  // Room for the next node's children (a SIMD push writes a node's worth whatever passed).
+  void ensure_room() {
+    if (tail_ + 2 * kWideArity <= cap_) [[likely]]
+      return;
+    compact();
+    if (tail_ + 2 * kWideArity <= cap_) return;
+    s_.set_size(tail_);
+    s_.reserve(2 * cap_);
+    base_ = s_.data(), cap_ = s_.capacity();
+  }
+  // The pending nodes as a NodeStack (at its bottom, oldest first).
+  const NodeStack<T>& sync() {
+    compact();
+    s_.set_size(tail_);
+    return s_;
+  }
+
+ private:
+  void compact() {
+    if (head_ == 0) return;
+    std::copy(base_ + head_, base_ + tail_, base_);
+    tail_ -= head_, head_ = 0;
+  }
+  NodeStack<T>& s_;
+  NodeEntry<T>* base_;
+  std::size_t head_ = 0, tail_, cap_;
 };
 
 template <typename T>
@@ -272,6 +308,19 @@ template <typename T>
 HeapCursor<T> cursor(NodeHeap<T>& h) {
   return HeapCursor<T>(h);
 }
+// A kAnyOrder policy's stack is worked on first in first out.
+template <class Policy, typename T>
+auto cursor_for(NodeStack<T>& s) {
+  if constexpr (Policy::kAnyOrder) {
+    return FifoCursor<T>(s);
+  } else {
+    return StackCursor<T>(s);
+  }
+}
+template <class Policy, typename T>
+HeapCursor<T> cursor_for(NodeHeap<T>& h) {
+  return HeapCursor<T>(h);
+}
 
 // The traversal loop with the node and leaf tests of `Ops`. Returns true when every pending node
 // is done, false when the policy suspended it (the next node is back on `container`).
@@ -280,7 +329,7 @@ inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Conta
   const Ops ops(r);
   const WideNode<T>* const nodes = bvh.nodes.data();
   const TriBlock<T>* const blocks = bvh.blocks.data();
-  auto pending = cursor(container);
+  auto pending = cursor_for<Policy>(container);
   NodeEntry<T> cur{};
   bool have = false;  // `cur` is a child descended into directly, not taken from `pending`
   for (;;) {
@@ -314,10 +363,10 @@ inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Conta
     const WideNode<T>& node = nodes[cur.ref];
     c.node_tests += std::uint64_t(__builtin_popcount(node.valid()));
     if constexpr (!decltype(pending)::kOrdered && !Policy::kCullsInRange) {
-      // Depth first: every child that passes goes onto the stack far to near in SIMD stores (in
-      // slot order, unranked, where the policy takes any order), and the nearest (the last
-      // stored) is descended into at once (taken from the registers, not read back; the
-      // stack keeps the others). The others are prefetched; the nearest is read at once anyway.
+      // Depth first: every child that passes goes onto the stack far to near in SIMD stores, and
+      // the nearest (the last stored) is descended into at once (taken from the registers, not
+      // read back; the stack keeps the others). The others are prefetched; the nearest is read at
+      // once anyway. Where the policy takes any order: in slot order, unranked, breadth first.
       if constexpr (Policy::kAnyOrder) pending.ensure_room();
       NodeEntry<T>* const pushed = pending.top();
       std::uint32_t others;
@@ -327,16 +376,13 @@ inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Conta
       // store still in flight waits for it.
       detail_prefetch(nodes, blocks, others, node.child);
       if constexpr (Policy::kAnyOrder) {
-        // Delayed descent: where the order does not matter, the node processed next is the one
-        // on top of the stack before this node's children, asked for (prefetched) a step ago,
-        // rather than the nearest child, asked for only now; that child takes its place. The
-        // same nodes are visited (a fixed range, nothing culled), in an order that hides the
-        // latency of one node test. The stack can then outgrow a depth-first traversal's bound
-        // (ensure_room above).
-        if (!pending.empty()) {
-          detail_prefetch(nodes, blocks, &cur, 1);
-          std::swap(cur, pushed[-1]);
-        }
+        // Breadth first (FifoCursor): the nearest child joins the others at the tail (the
+        // one-child path stored nothing, the others stored it last), prefetched like them, and
+        // the node processed next is the oldest pending one.
+        detail_prefetch(nodes, blocks, &cur, 1);
+        pushed[n - 1] = cur;
+        pending.grow(n);
+        continue;
       }
       pending.grow(n - 1);
       have = true;
