@@ -89,11 +89,21 @@ void check_kernel(const char* name, const WideBvhf& bvh, const Expected& ex, int
   }
 }
 
+// `queue` with its first pass forced to one order (the default picks by the recent rays).
+template <QueueFirstPass kPass>
+struct QueueWith : QueueKernel<float> {
+  QueueWith(const WideBvhf& bvh, HitOrder order) : QueueKernel<float>(bvh, order, kPass) {}
+};
+
 void check_wide(const WideBvhf& bvh, const Expected& ex) {
   for (int tie = 0; tie < 2; ++tie) {
     SCOPED_TRACE(tie_name(kTieOrders[tie]));
     check_kernel<RestartKernel<float>>("restart", bvh, ex, tie, 0);
     check_kernel<QueueKernel<float>>("queue", bvh, ex, tie, 0);
+    for (std::size_t n : {0, 1, 3, 16}) {
+      check_kernel<QueueWith<QueueFirstPass::depth_first>>("queue depth first", bvh, ex, tie, n);
+      check_kernel<QueueWith<QueueFirstPass::breadth_first>>("queue breadth first", bvh, ex, tie, n);
+    }
     check_kernel<AllHitsKernel<float>>("filter", bvh, ex, tie, 0);
     check_kernel<BufferedKernel<float>>("buffered", bvh, ex, tie, 0);
     for (std::size_t n : {0, 1, 3, 16}) check_kernel<NodeCullKernel<float>>("nodecull", bvh, ex, tie, n);

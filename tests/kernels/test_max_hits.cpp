@@ -49,6 +49,35 @@ TEST(MaxHits, NodeCullContinuesPastTheHint) {
   }
 }
 
+// `queue`'s first pass in either order, and switching between them from ray to ray (adaptive: near
+// to far while most rays close their bound, breadth first once most leave it open, as every ray
+// does at hint 1000), gives the complete sequence.
+TEST(MaxHits, QueueFirstPassInEitherOrder) {
+  const Fixture f = make_fixture();
+  const WideBvhf& bvh = f.world->accel.wide();
+  for (TieOrder tie : kTieOrders) {
+    SCOPED_TRACE(tie_name(tie));
+    for (QueueFirstPass pass : {QueueFirstPass::depth_first, QueueFirstPass::breadth_first, QueueFirstPass::adaptive}) {
+      QueueKernel<float> k(bvh, {tie}, pass);
+      std::size_t breadth_first_rays[2] = {0, 0};  // at hint 1 and at hint 1000
+      for (std::size_t n : {std::size_t(1), std::size_t(5), std::size_t(15), std::size_t(1000)})
+        for (const Ray& r : f.rays) {
+          const auto want = reference_hits(f.world->scene, r, {tie});
+          if (n == 1 || n == 1000) breadth_first_rays[n == 1000] += k.breadth_first();
+          k.begin(r, n);
+          std::vector<Hit> got;
+          Hit h;
+          while (got.size() <= want.size() + 5 && k.next(h)) got.push_back(h);
+          ASSERT_TRUE(same_hits(want, got)) << "pass " << int(pass) << " hint " << n << " " << str(r);
+        }
+      if (pass == QueueFirstPass::adaptive) {
+        EXPECT_EQ(breadth_first_rays[0], 0u) << "at hint 1 most rays close their bound";
+        EXPECT_GT(breadth_first_rays[1], 0u) << "at hint 1000 no ray does";
+      }
+    }
+  }
+}
+
 TEST(MaxHits, EveryKernelAcceptsTheHint) {
   const Fixture f = make_fixture();
   std::size_t long_rays = 0;

@@ -14,6 +14,14 @@
 // Why the hits come out complete and in order: when a pass ends, every node not traversed is on
 // the heap; the nearest hit held is returned only while it is strictly nearer than the nearest
 // node on the heap (a node entered at exactly its t may hold a hit that ranks first).
+//
+// The first pass may also run breadth first (as `filter` does, FifoCursor). Near to far pays where
+// the bound closes (N hits held), since nodes beyond it are then deferred; where a ray has fewer
+// hits than N it never closes, every node in range is traversed whatever the order, and breadth
+// first hides the latency of each node behind the others. Which rays are which is not known in
+// advance, so by default (QueueFirstPass::adaptive) the kernel runs breadth first while most of
+// its recent rays ended their first pass with the bound open. The hits are the same either way:
+// the order of the visit decides no hit, and culling at the bound is checked when a node is taken.
 #include <algorithm>
 #include <vector>
 
@@ -21,13 +29,17 @@
 
 namespace pierce {
 
+enum class QueueFirstPass { adaptive, depth_first, breadth_first };
+
 // C: the counter policy (counters.h).
 template <typename T, class C = NoCounters>
 class QueueKernel : public WideKernel<T, C> {
   using Base = WideKernel<T, C>;
 
  public:
-  explicit QueueKernel(const WideBvh<T>& bvh, HitOrder order = {}) : Base(bvh, order) {
+  explicit QueueKernel(const WideBvh<T>& bvh, HitOrder order = {},
+                       QueueFirstPass first_pass = QueueFirstPass::adaptive)
+      : Base(bvh, order), first_pass_(first_pass) {
     hits_.reserve(16);
     deferred_.reserve(4 * bvh.stack_capacity());
   }
@@ -41,8 +53,28 @@ class QueueKernel : public WideKernel<T, C> {
     deferred_.clear();
     // The first pass, from the root (what the first next() would do, without the heap).
     this->seed_root(this->ray_.tmin, this->ray_.tmax);
-    Descend p{*this};
-    this->run(p);
+    if (breadth_first()) {
+      // Hits come in any order: held unsorted until N are (the bound is tmax until then anyway).
+      sorted_ = false;
+      DescendAnyOrder p{*this};
+      this->run(p);
+      if (!sorted_) sort_held();
+    } else {
+      Descend p{*this};
+      this->run(p);
+    }
+    // 1/32: the share follows the last few dozen rays, so a run that moves between parts of a
+    // scene (or between scenes with one kernel) changes its mode within a few dozen rays.
+    const bool open = hits_.size() < depth_;
+    open_share_ += ((open ? 1.0f : 0.0f) - open_share_) * (1.0f / 32.0f);
+  }
+
+  // Whether the next begin() runs its first pass breadth first: where the bound stayed open for
+  // most recent rays (above three in four; below that, culling pays often enough to keep near to
+  // far), or as the constructor fixed it.
+  bool breadth_first() const {
+    if (first_pass_ == QueueFirstPass::adaptive) return open_share_ > 0.75f;
+    return first_pass_ == QueueFirstPass::breadth_first;
   }
 
   bool next(Hit& out) {
@@ -73,9 +105,26 @@ class QueueKernel : public WideKernel<T, C> {
     void culled(NodeEntry<T> node) { k.deferred_.push(node); }
     void hit(const TriBlock<T>& b, int l, const TriangleHit<T>& h) { k.hold(make_hit(b, l, h)); }
   };
+  // The same, breadth first (FifoCursor).
+  struct DescendAnyOrder : Descend {
+    static constexpr bool kAnyOrder = true;
+    using Descend::Descend;
+  };
+
+  void sort_held() {
+    std::sort(hits_.begin() + std::ptrdiff_t(pos_), hits_.end(), this->order_);
+    sorted_ = true;
+    update_bound();
+  }
 
   // Inserted in order; the depth-first pass meets hits roughly near to far, so from the back.
+  // Unsorted (breadth first), appended until N are held, then sorted once.
   void hold(const Hit& h) {
+    if (!sorted_) {
+      hits_.push_back(h);
+      if (hits_.size() - pos_ >= depth_) sort_held();
+      return;
+    }
     std::size_t i = hits_.size();
     hits_.push_back(h);
     while (i > pos_ && this->order_.less(h, hits_[i - 1])) {
@@ -94,6 +143,9 @@ class QueueKernel : public WideKernel<T, C> {
   std::size_t depth_ = 1;  // the bound is the depth_-th held hit not yet returned
   T bound_ = 0;            // its t (tmax while fewer are held)
   NodeHeap<T> deferred_;   // nodes entered beyond the bound, nearest first
+  QueueFirstPass first_pass_;
+  bool sorted_ = true;       // hits_ from pos_ on are in hit order (false only in a breadth-first pass)
+  float open_share_ = 0.0f;  // recent rays whose first pass ended with the bound open (adaptive)
 };
 
 }  // namespace pierce
