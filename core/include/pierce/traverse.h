@@ -103,6 +103,7 @@ class NodeHeap {
   }
   T next_tn() const { return v_.front().tn; }
   T min_tn() const { return v_.empty() ? std::numeric_limits<T>::infinity() : v_.front().tn; }
+  std::size_t size() const { return v_.size(); }
 
  private:
   std::vector<NodeEntry<T>> v_;

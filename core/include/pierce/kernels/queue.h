@@ -16,13 +16,15 @@
 // node on the heap (a node entered at exactly its t may hold a hit that ranks first).
 //
 // The first pass may also run breadth first (as `filter` does, FifoCursor). Near to far pays where
-// the bound closes (N hits held), since nodes beyond it are then deferred; where a ray has fewer
-// hits than N it never closes, every node in range is traversed whatever the order, and breadth
-// first hides the latency of each node behind the others. Which rays are which is not known in
-// advance, so by default (QueueFirstPass::adaptive) the kernel runs breadth first while most of
-// its recent rays ended their first pass with the bound open. The hits are the same either way:
-// the order of the visit decides no hit, and culling at the bound is checked when a node is taken.
+// the bound closes early (N hits held), since the nodes beyond it are then deferred; where it
+// closes late, or never (a ray with fewer hits than N), nearly every node in range is traversed
+// whatever the order, and breadth first hides the latency of each node behind the others. Which
+// rays are which is not known in advance, so by default (QueueFirstPass::adaptive) the kernel
+// measures what culling saved on its recent depth-first first passes, as nodes deferred per node
+// traversed, and runs breadth first while that is small. The hits are the same either way: the
+// order of the visit decides no hit, and culling at the bound is checked when a node is taken.
 #include <algorithm>
+#include <cstdint>
 #include <vector>
 
 #include "pierce/kernels/wide_kernel.h"
@@ -53,27 +55,32 @@ class QueueKernel : public WideKernel<T, C> {
     deferred_.clear();
     // The first pass, from the root (what the first next() would do, without the heap).
     this->seed_root(this->ray_.tmin, this->ray_.tmax);
-    if (breadth_first()) {
+    const bool breadth = breadth_first();
+    ++rays_;
+    if (breadth) {
       // Hits come in any order: held unsorted until N are (the bound is tmax until then anyway).
       sorted_ = false;
       DescendAnyOrder p{*this};
       this->run(p);
       if (!sorted_) sort_held();
-    } else {
-      Descend p{*this};
-      this->run(p);
+      return;
     }
-    // 1/32: the share follows the last few dozen rays, so a run that moves between parts of a
-    // scene (or between scenes with one kernel) changes its mode within a few dozen rays.
-    const bool open = hits_.size() < depth_;
-    open_share_ += ((open ? 1.0f : 0.0f) - open_share_) * (1.0f / 32.0f);
+    steps_ = 0;
+    Descend p{*this};
+    this->run(p);
+    // What culling saved on this ray: subtrees deferred per node traversed (none where the bound
+    // never closed). Measured on depth-first passes only, since a breadth-first pass closes its
+    // bound later and would defer less. 1/32: the average follows the last few dozen of them.
+    const float deferred = float(deferred_.size()) / float(steps_ > 0 ? steps_ : 1);
+    deferred_per_step_ += (deferred - deferred_per_step_) * (1.0f / 32.0f);
   }
 
-  // Whether the next begin() runs its first pass breadth first: where the bound stayed open for
-  // most recent rays (above three in four; below that, culling pays often enough to keep near to
-  // far), or as the constructor fixed it.
+  // Whether the next begin() runs its first pass breadth first: as the constructor fixed it, or
+  // (adaptive) while recent depth-first passes deferred fewer than kBreadthFirstBelow subtrees per
+  // node traversed, but for every 16th ray, which runs depth first to keep that average current.
   bool breadth_first() const {
-    if (first_pass_ == QueueFirstPass::adaptive) return open_share_ > 0.75f;
+    if (first_pass_ == QueueFirstPass::adaptive)
+      return deferred_per_step_ < kBreadthFirstBelow && (rays_ & 15) != 15;
     return first_pass_ == QueueFirstPass::breadth_first;
   }
 
@@ -99,6 +106,7 @@ class QueueKernel : public WideKernel<T, C> {
   struct Descend : TraversalPolicy<T> {
     QueueKernel& k;
     explicit Descend(QueueKernel& kernel) : k(kernel) {}
+    void node(NodeRef /*ref*/, T /*tn*/) { ++k.steps_; }
     T lo() const { return k.ray_.tmin; }
     T hi() const { return k.ray_.tmax; }
     T cull_bound() const { return k.bound_; }
@@ -145,7 +153,13 @@ class QueueKernel : public WideKernel<T, C> {
   NodeHeap<T> deferred_;   // nodes entered beyond the bound, nearest first
   QueueFirstPass first_pass_;
   bool sorted_ = true;       // hits_ from pos_ on are in hit order (false only in a breadth-first pass)
-  float open_share_ = 0.0f;  // recent rays whose first pass ended with the bound open (adaptive)
+  // Between the bench scenes' figures (pierce_bench_kernels, sixteenth session): hairball at N = 15
+  // defers 0.03 per node traversed and runs faster breadth first, at N = 5 0.17 and runs faster
+  // near to far; blob and shell at N = 5 and 15 hold fewer hits than N and defer none.
+  static constexpr float kBreadthFirstBelow = 0.08f;
+  float deferred_per_step_ = 1.0f;  // adaptive: starts near to far
+  std::uint64_t steps_ = 0;         // nodes traversed in this ray's passes
+  std::uint64_t rays_ = 0;
 };
 
 }  // namespace pierce
