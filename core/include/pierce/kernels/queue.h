@@ -77,10 +77,10 @@ class QueueKernel : public WideKernel<T, C> {
 
   // Whether the next begin() runs its first pass breadth first: as the constructor fixed it, or
   // (adaptive) while recent depth-first passes deferred fewer than kBreadthFirstBelow subtrees per
-  // node traversed, but for every 16th ray, which runs depth first to keep that average current.
+  // node traversed, but for every 32nd ray, which runs depth first to keep that average current.
   bool breadth_first() const {
     if (first_pass_ == QueueFirstPass::adaptive)
-      return deferred_per_step_ < kBreadthFirstBelow && (rays_ & 15) != 15;
+      return deferred_per_step_ < kBreadthFirstBelow && (rays_ & 31) != 31;
     return first_pass_ == QueueFirstPass::breadth_first;
   }
 
@@ -117,6 +117,7 @@ class QueueKernel : public WideKernel<T, C> {
   struct DescendAnyOrder : Descend {
     static constexpr bool kAnyOrder = true;
     using Descend::Descend;
+    void node(NodeRef /*ref*/, T /*tn*/) {}  // nothing reads the count of a breadth-first pass
   };
 
   void sort_held() {
