@@ -116,9 +116,10 @@ struct TraversalPolicy {
   static constexpr bool kCullsInRange = false;
   // True if suspend() can return true (it then sees the pending nodes).
   static constexpr bool kSuspends = false;
-  // True if nothing the policy does depends on the order in which nodes are visited (it takes every
-  // hit in a range that never changes): children are then pushed unranked, in slot order, and
-  // visited breadth first (FifoCursor).
+  // True if the policy's result does not depend on the order in which nodes are visited (`filter`
+  // takes every hit of a fixed range; `queue`'s breadth-first pass culls at a bound that may fall,
+  // checked when a node is taken): children are then pushed unranked, in slot order, and visited
+  // breadth first (FifoCursor).
   static constexpr bool kAnyOrder = false;
   void culled(NodeEntry<T> /*node*/) {}
   template <class Pending>
@@ -301,15 +302,8 @@ class HeapCursor {
   NodeHeap<T>& h_;
 };
 
-template <typename T>
-StackCursor<T> cursor(NodeStack<T>& s) {
-  return StackCursor<T>(s);
-}
-template <typename T>
-HeapCursor<T> cursor(NodeHeap<T>& h) {
-  return HeapCursor<T>(h);
-}
-// A kAnyOrder policy's stack is worked on first in first out.
+// The cursor over a policy's container: a stack depth first, or first in first out for a
+// kAnyOrder policy; a heap as it is.
 template <class Policy, typename T>
 auto cursor_for(NodeStack<T>& s) {
   if constexpr (Policy::kAnyOrder) {

@@ -154,9 +154,10 @@ class QueueKernel : public WideKernel<T, C> {
   NodeHeap<T> deferred_;   // nodes entered beyond the bound, nearest first
   QueueFirstPass first_pass_;
   bool sorted_ = true;       // hits_ from pos_ on are in hit order (false only in a breadth-first pass)
-  // Between the bench scenes' figures (pierce_bench_kernels, sixteenth session): hairball at N = 15
-  // defers 0.03 per node traversed and runs faster breadth first, at N = 5 0.17 and runs faster
-  // near to far; blob and shell at N = 5 and 15 hold fewer hits than N and defer none.
+  // Between the bench scenes' figures, read from a temporary instrumented build (no bench prints
+  // them; sixteenth session, docs/BENCHMARKS.md): hairball at N = 15 defers 0.03 per node traversed
+  // and ran faster breadth first in pierce_bench_kernels, at N = 5 0.17 and ran faster near to
+  // far; blob and shell at N = 5 and 15 hold fewer hits than N and defer none.
   static constexpr float kBreadthFirstBelow = 0.08f;
   float deferred_per_step_ = 1.0f;  // adaptive: starts near to far
   std::uint64_t steps_ = 0;         // nodes traversed in this ray's passes
