@@ -8,14 +8,8 @@
 
 namespace pierce {
 
-namespace {
-// Embree asserts (and its math breaks down) beyond this magnitude of ray coordinates.
-constexpr double kEmbreeLarge = 1.8e18;
-
-bool embree_representable(const Vec3d& v) { return all_finite(v) && max_abs(v) < kEmbreeLarge; }
-// No t satisfies tmin <= t <= tmax.
-bool empty_range(const Ray& r) { return !(r.tmin <= r.tmax); }
-}  // namespace
+using detail::embree_representable;
+using detail::empty_range;
 
 namespace detail {
 
@@ -180,49 +174,6 @@ bool EmbreeNodeCullKernel::next(Hit& out) {
 
 EpsilonKernel::EpsilonKernel(const EmbreeAccel& acc, double epsilon_rel, bool count)
     : scene_(acc.native()), eps_(epsilon_rel * acc.scene().scale()), count_(count) {}
-
-void EpsilonKernel::begin(const Ray& ray, std::size_t) {
-  ray_ = ray;
-  tnear_ = float(std::max(0.0, ray.tmin));
-  relaunch_ = false;
-  // Rays Embree cannot take (its ray.valid(): finite, |coordinates| < 1.8e18, no NaN range)
-  // get no hits; so do empty ranges.
-  done_ = !embree_representable(Vec3d(Vec3f(ray.org))) || !embree_representable(Vec3d(Vec3f(ray.dir))) ||
-          max_abs(Vec3f(ray.dir)) == 0.f || empty_range(ray) || std::isnan(float(ray.tmax));
-}
-
-bool EpsilonKernel::next(Hit& out) {
-  if (done_) return false;
-  // The relaunch point after the last hit, worked out only when a next hit is asked for (a caller
-  // that wants one hit never pays for it).
-  if (relaunch_)
-    tnear_ = std::max(float(double(last_t_) + eps_), std::nextafter(last_t_, std::numeric_limits<float>::infinity()));
-  RTCRayHit rh = native_rayhit(ray_, tnear_);
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  rtcIntersect1(scene_, &ctx, &rh);
-  if (count_) ++counters.traversal_steps;
-  const float t = rh.ray.tfar;
-  // No hit, or a distance beyond float range (tiny direction): not representable. Degenerate
-  // triangles are not in the native scene (DegenerateTriangles::leave_out), so every hit counts.
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID || !std::isfinite(t)) {
-    done_ = true;
-    return false;
-  }
-  last_t_ = t;
-  relaunch_ = true;
-  out = Hit{};
-  out.t = t;
-  out.geom = rh.hit.geomID;
-  out.prim = rh.hit.primID;
-  out.u = rh.hit.u;
-  out.v = rh.hit.v;
-  // Embree's geometric normal is (v1-v0)x(v2-v0) as Hit::ng, computed in its own rounding: no
-  // reading of the scene's vertices per hit (this is the inexact baseline, measured for speed).
-  out.ng = Vec3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
-  out.enter = dot(Vec3d(out.ng), ray_.dir) < 0.0;
-  return true;
-}
 
 bool embree_first_hit(const EmbreeAccel& acc, const Ray& ray, Hit& out) {
   if (!embree_representable(Vec3d(Vec3f(ray.org))) || !embree_representable(Vec3d(Vec3f(ray.dir))) ||
