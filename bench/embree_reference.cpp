@@ -64,16 +64,27 @@ Hit to_hit(const RTCRayHit& rh) {
   return h;
 }
 
+RTCSceneFlags flags_for(ReferenceUse use) {
+  switch (use) {
+    case ReferenceUse::first_hit:
+      return RTC_SCENE_FLAG_NONE;
+    case ReferenceUse::robust_first_hit:
+      return RTC_SCENE_FLAG_ROBUST;
+    case ReferenceUse::filters:
+      return RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION;
+  }
+  return RTC_SCENE_FLAG_NONE;
+}
+
 }  // namespace
 
-EmbreeReference::EmbreeReference(const Scene& scene, bool robust) {
+EmbreeReference::EmbreeReference(const Scene& scene, ReferenceUse use) : use_(use) {
   device_ = rtcNewDevice("threads=0");
   if (!device_) throw std::runtime_error("Embree: rtcNewDevice failed");
   rtcSetDeviceMemoryMonitorFunction(device_, monitor, &bytes_);
   const auto t0 = std::chrono::steady_clock::now();
   scene_ = rtcNewScene(device_);
-  rtcSetSceneFlags(scene_, RTCSceneFlags(RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION |
-                                         (robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE)));
+  rtcSetSceneFlags(scene_, flags_for(use));
   attach_native_triangles(device_, scene_, scene, DegenerateTriangles::keep);  // as a plain Embree user would
   rtcCommitScene(scene_);
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -16,20 +16,26 @@
 
 namespace pierce::bench {
 
+// What a reference scene is for, and so its flags, as an Embree user would set them: none for
+// first hits, RTC_SCENE_FLAG_ROBUST (Embree's watertight mode) for robust first hits, and
+// RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION where a filter in the context gathers hits.
+enum class ReferenceUse { first_hit, robust_first_hit, filters };
+
 class EmbreeReference {
  public:
-  // robust: RTC_SCENE_FLAG_ROBUST (Embree's watertight mode).
-  EmbreeReference(const Scene& scene, bool robust);
+  EmbreeReference(const Scene& scene, ReferenceUse use);
   ~EmbreeReference();
   EmbreeReference(const EmbreeReference&) = delete;
   EmbreeReference& operator=(const EmbreeReference&) = delete;
 
+  ReferenceUse use() const { return use_; }
   double build_seconds() const { return build_seconds_; }
   // Bytes Embree allocated for the scene (its memory monitor), geometry buffers included.
   std::size_t bytes() const { return std::size_t(bytes_.load()); }
 
   // rtcIntersect1: the closest hit.
   bool first_hit(const Ray& ray, Hit& out) const;
+  // The two below need a scene made for ReferenceUse::filters: elsewhere Embree ignores the filter.
   // Every hit through an intersection filter that records and rejects it, then sorted by
   // (t, geomID, primID) with repeated (geomID, primID) removed; at most max_hits (0 = all) kept.
   void all_hits(const Ray& ray, std::size_t max_hits, std::vector<Hit>& out) const;
@@ -40,6 +46,7 @@ class EmbreeReference {
  private:
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
+  ReferenceUse use_;
   double build_seconds_ = 0;
   std::atomic<long long> bytes_{0};
 };

@@ -81,7 +81,7 @@ double embree_peak_rss_mb(const std::string& path) {
     close(fd[0]);
     Scene scene;
     add_model_files(scene, {path});
-    const EmbreeReference e(scene, false);
+    const EmbreeReference e(scene, ReferenceUse::first_hit);
     const double mb = peak_rss_mb();
     if (write(fd[1], &mb, sizeof mb) != sizeof mb) _exit(1);
     _exit(0);
