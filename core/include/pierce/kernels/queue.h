@@ -58,7 +58,7 @@ class QueueKernel : public WideKernel<T, C> {
     const bool breadth = breadth_first();
     ++rays_;
     if (breadth) {
-      // Hits come in any order: held unsorted until N are (the bound is tmax until then anyway).
+      // Hits come in any order: only the N nearest are kept in order (see hold()).
       sorted_ = false;
       DescendAnyOrder p{*this};
       this->run(p);
@@ -127,11 +127,31 @@ class QueueKernel : public WideKernel<T, C> {
   }
 
   // Inserted in order; the depth-first pass meets hits roughly near to far, so from the back.
-  // Unsorted (breadth first), appended until N are held, then sorted once.
+  // Breadth first, hits come in any order: appended unsorted until N are held, then sorted; after
+  // that only the N nearest (which set the bound) are kept in order, and a hit that ranks before
+  // the N-th takes its place there while the N-th moves to the back, unsorted. Each hit costs at
+  // most N moves, not as many as are held (a ray with thousands of hits at a large N), and the
+  // bound is the N-th nearest held at every step, as in the depth-first pass. The pass sorts the
+  // rest once when it ends.
   void hold(const Hit& h) {
     if (!sorted_) {
       hits_.push_back(h);
-      if (hits_.size() - pos_ >= depth_) sort_held();
+      const std::size_t held = hits_.size() - pos_;
+      if (held < depth_) return;
+      if (held == depth_) {
+        std::sort(hits_.begin() + std::ptrdiff_t(pos_), hits_.end(), this->order_);
+        update_bound();
+        return;
+      }
+      std::size_t i = pos_ + depth_ - 1;  // the N-th
+      if (!this->order_.less(h, hits_[i])) return;
+      hits_.back() = hits_[i];
+      while (i > pos_ && this->order_.less(h, hits_[i - 1])) {
+        hits_[i] = hits_[i - 1];
+        --i;
+      }
+      hits_[i] = h;
+      update_bound();
       return;
     }
     std::size_t i = hits_.size();
@@ -153,7 +173,7 @@ class QueueKernel : public WideKernel<T, C> {
   T bound_ = 0;            // its t (tmax while fewer are held)
   NodeHeap<T> deferred_;   // nodes entered beyond the bound, nearest first
   QueueFirstPass first_pass_;
-  bool sorted_ = true;       // hits_ from pos_ on are in hit order (false only in a breadth-first pass)
+  bool sorted_ = true;  // hits_ from pos_ on are in hit order (in a breadth-first pass, false: only the first N)
   // Between the bench scenes' figures, read from a temporary instrumented build (no bench prints
   // them; sixteenth session, docs/BENCHMARKS.md): hairball at N = 15 defers 0.03 per node traversed
   // and ran faster breadth first in pierce_bench_kernels, at N = 5 0.17 and ran faster near to
