@@ -62,7 +62,8 @@ class QueueKernel : public WideKernel<T, C> {
       sorted_ = false;
       DescendAnyOrder p{*this};
       this->run(p);
-      if (!sorted_) sort_held();
+      sort_held();
+      sorted_ = true;
       return;
     }
     steps_ = 0;
@@ -122,7 +123,17 @@ class QueueKernel : public WideKernel<T, C> {
 
   void sort_held() {
     std::sort(hits_.begin() + std::ptrdiff_t(pos_), hits_.end(), this->order_);
-    sorted_ = true;
+    update_bound();
+  }
+  // h into hits_[pos_, last], which is in order but for slot `last` (free): the slots before it
+  // that rank after h move up one.
+  void insert_in_order(std::size_t last, const Hit& h) {
+    std::size_t i = last;
+    while (i > pos_ && this->order_.less(h, hits_[i - 1])) {
+      hits_[i] = hits_[i - 1];
+      --i;
+    }
+    hits_[i] = h;
     update_bound();
   }
 
@@ -139,29 +150,17 @@ class QueueKernel : public WideKernel<T, C> {
       const std::size_t held = hits_.size() - pos_;
       if (held < depth_) return;
       if (held == depth_) {
-        std::sort(hits_.begin() + std::ptrdiff_t(pos_), hits_.end(), this->order_);
-        update_bound();
+        sort_held();
         return;
       }
-      std::size_t i = pos_ + depth_ - 1;  // the N-th
-      if (!this->order_.less(h, hits_[i])) return;
-      hits_.back() = hits_[i];
-      while (i > pos_ && this->order_.less(h, hits_[i - 1])) {
-        hits_[i] = hits_[i - 1];
-        --i;
-      }
-      hits_[i] = h;
-      update_bound();
+      const std::size_t nth = pos_ + depth_ - 1;
+      if (!this->order_.less(h, hits_[nth])) return;
+      hits_.back() = hits_[nth];
+      insert_in_order(nth, h);
       return;
     }
-    std::size_t i = hits_.size();
     hits_.push_back(h);
-    while (i > pos_ && this->order_.less(h, hits_[i - 1])) {
-      hits_[i] = hits_[i - 1];
-      --i;
-    }
-    hits_[i] = h;
-    update_bound();
+    insert_in_order(hits_.size() - 1, h);
   }
   void update_bound() {
     bound_ = hits_.size() - pos_ >= depth_ ? T(hits_[pos_ + depth_ - 1].t) : this->ray_.tmax;
