@@ -67,7 +67,7 @@ struct TraversalRay {
     const T dz = d[tr.kz];
     tr.sx = d[tr.kx] / dz;
     tr.sy = d[tr.ky] / dz;
-    tr.sz = T(1) / dz;
+    tr.sz = inv[tr.kz];  // 1 / dz, the same division (dz, the largest component, is non-zero on a valid ray)
     // Round the segment inwards: hit distances are values of T, so t >= tmin holds for the
     // caller's double tmin exactly when it holds for the next T up (and likewise for tmax).
     tr.tmin = T(r.tmin);

@@ -182,7 +182,8 @@ inline std::uint32_t detail_cull(Policy& p, std::uint32_t mask, const T* tn, con
 
 // A child that passed the box test is asked for at once, while the nodes in front of it are
 // processed: the lines a node test reads (the whole 256-byte float node), or those a leaf block's
-// SIMD test reads (all but the ids). On a scene beyond the caches this hides much of the latency.
+// SIMD test reads (all but the ids). On a scene beyond the caches this hides much of the latency;
+// within them it is only work, so the loop asks only where detail_prefetches() says so.
 // The prefetch is an asm statement: GCC 12's dead-code elimination drops __builtin_prefetch here
 // (the calls in the two branches below compiled to nothing, checked in the object code).
 inline void detail_prefetch_line(const char* p) {
@@ -215,6 +216,19 @@ template <typename T>
 inline void detail_prefetch(const WideNode<T>* nodes, const TriBlock<T>* blocks, const NodeEntry<T>* entries,
                             std::uint32_t n) {
   for (std::uint32_t i = 0; i < n; ++i) detail_prefetch(nodes, blocks, entries[i].ref);
+}
+
+// Whether a traversal of `bvh` prefetches the children it will visit. Where the BVH stays in the
+// caches a prefetch is only work: on CGAL's elephant (0.36 MB) the prefetches took 7 % of restart's
+// and of filter's time. Depth first they cost more than they saved up to a 21 MB scene (blob at 7
+// subdivisions) and paid at 85 MB; breadth first (kAnyOrder: the node processed next is the one
+// asked for longest ago) they paid from the 21 MB scene on and were level or cost up to 4 % at
+// 5-7 MB
+// (docs/BENCHMARKS.md, eighteenth session).
+template <class Policy, typename T>
+inline bool detail_prefetches(const WideBvh<T>& bvh) {
+  constexpr std::size_t kMiB = std::size_t(1) << 20;
+  return bvh.memory_bytes() > (Policy::kAnyOrder ? 8 : 32) * kMiB;
 }
 
 // The pending nodes as the loop sees them. A stack is worked on through locals (buffer pointer and
@@ -325,6 +339,7 @@ inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Conta
   const WideNode<T>* const nodes = bvh.nodes.data();
   const TriBlock<T>* const blocks = bvh.blocks.data();
   auto pending = cursor_for<Policy>(container);
+  const bool prefetch = detail_prefetches<Policy>(bvh);
   NodeEntry<T> cur{};
   bool have = false;  // `cur` is a child descended into directly, not taken from `pending`
   for (;;) {
@@ -369,12 +384,12 @@ inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Conta
       if (n == 0) continue;
       // The addresses come from the node, not from the entries just stored: a load from a wide
       // store still in flight waits for it.
-      detail_prefetch(nodes, blocks, others, node.child);
+      if (prefetch) detail_prefetch(nodes, blocks, others, node.child);
       if constexpr (Policy::kAnyOrder) {
         // Breadth first (FifoCursor): the nearest child joins the others at the tail (the
         // one-child path stored nothing, the others stored it last), prefetched like them, and
         // the node processed next is the oldest pending one.
-        detail_prefetch(nodes, blocks, &cur, 1);
+        if (prefetch) detail_prefetch(nodes, blocks, &cur, 1);
         pushed[n - 1] = cur;
         pending.grow(n);
         continue;
@@ -389,7 +404,7 @@ inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Conta
     std::uint32_t mask = ops.node_hits(node, p.lo(), p.hi(), tn, child);
     if constexpr (Policy::kCullsInRange) mask = detail_cull(p, mask, tn, child);
     if (mask == 0) continue;
-    detail_prefetch(nodes, blocks, mask, child);
+    if (prefetch) detail_prefetch(nodes, blocks, mask, child);
     if constexpr (decltype(pending)::kOrdered) {
       // Descend into the nearest child directly unless a pending node is nearer still.
       int nearest = __builtin_ctz(mask);

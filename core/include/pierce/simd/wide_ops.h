@@ -197,6 +197,7 @@ struct SimdRay {
   __m256 org[3], inv[3];
   __m256 pad;
   __m256 okx, oky, okz, sx, sy;  // triangle test: origin in the shear frame's axes, shear constants
+  __m256 swap_mask[3];  // all bits set where inv[a] < 0 (slab() swaps the planes)
   float sz;
   std::uint32_t near_offset[3], far_offset[3];  // byte offsets of the near and far planes in a WideNode
   bool zero[3];
@@ -216,6 +217,7 @@ struct SimdRay {
       // slab(): t0 from lo, t1 from hi, swapped where inv < 0 (arithmetic, not a branch: random
       // directions would mispredict it).
       const std::uint32_t swapped = r.inv[a] < 0.0f;
+      swap_mask[a] = _mm256_castsi256_ps(_mm256_set1_epi32(-int(swapped)));
       near_offset[a] = lo + swapped * (hi - lo);
       far_offset[a] = hi - swapped * (hi - lo);
     }
@@ -229,9 +231,6 @@ struct SimdRay {
     sz = r.sz;
     oct = octant(r);
   }
-
-  // inv[a] < 0: slab() swaps the planes (the near plane is the upper one).
-  bool swapped(int a) const { return near_offset[a] > far_offset[a]; }
 
   // Corner c's coordinates along the axis at `offset` (kx_offset, ky_offset or kz_offset), eight lanes.
   static const float* axis(const TriBlock<float>& b, int c, std::uint32_t offset) {
@@ -317,9 +316,10 @@ struct SimdRay {
                                                      _mm256_cmp_ps(org[a], H, _CMP_GT_OQ)));
         continue;
       }
-      __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(L, org[a]), inv[a]);
-      __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(H, org[a]), inv[a]);
-      if (swapped(a)) std::swap(t0, t1);
+      // slab()'s swap where inv < 0, as a blend of the planes: a branch on the direction's sign
+      // was mispredicted at each new ray (3.5 % of filter's time on CGAL's elephant).
+      const __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_blendv_ps(L, H, swap_mask[a]), org[a]), inv[a]);
+      const __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_blendv_ps(H, L, swap_mask[a]), org[a]), inv[a]);
       tn = _mm256_max_ps(t0, tn);
       tf = _mm256_min_ps(t1, tf);
     }
