@@ -79,6 +79,29 @@ TEST(MaxHits, QueueFirstPassInEitherOrder) {
   }
 }
 
+// Adaptive `queue` probes depth first less often while the probes find nothing to cull (hint 1000:
+// no ray closes its bound), and runs near to far again once culling defers much (hint 1).
+TEST(MaxHits, QueueProbesLessOftenWhileBreadthFirstIsClear) {
+  const Fixture f = make_fixture();
+  QueueKernel<float> k(f.world->accel.wide());
+  auto run = [&](std::size_t hint, std::size_t rays, std::size_t count_from) {
+    std::size_t depth_first = 0;
+    Hit h;
+    for (std::size_t i = 0; i < rays; ++i) {
+      if (i >= count_from) depth_first += !k.breadth_first();
+      k.begin(f.rays[i % f.rays.size()], hint);
+      while (k.next(h)) {
+      }
+    }
+    return depth_first;
+  };
+  // Every 32nd ray would be 64 of the last 2048.
+  const std::size_t probes = run(1000, 4096, 2048);
+  EXPECT_GT(probes, 0u) << "it still probes";
+  EXPECT_LE(probes, 2048u / 128) << "probes at most every 128th ray once they find nothing";
+  EXPECT_EQ(run(1, 2048, 1536), 512u) << "at hint 1 culling defers much: near to far again";
+}
+
 TEST(MaxHits, EveryKernelAcceptsTheHint) {
   const Fixture f = make_fixture();
   std::size_t long_rays = 0;
