@@ -219,12 +219,11 @@ inline void detail_prefetch(const WideNode<T>* nodes, const TriBlock<T>* blocks,
 }
 
 // Whether a traversal of `bvh` prefetches the children it will visit. Where the BVH stays in the
-// caches a prefetch is only work: on CGAL's elephant (0.36 MB) the prefetches took 7 % of restart's
-// and of filter's time. Depth first they cost more than they saved up to a 21 MB scene (blob at 7
-// subdivisions) and paid at 85 MB; breadth first (kAnyOrder: the node processed next is the one
-// asked for longest ago) they paid from the 21 MB scene on and were level or cost up to 4 % at
-// 5-7 MB
-// (docs/BENCHMARKS.md, eighteenth session).
+// caches a prefetch is only work (on CGAL's 5 558-triangle elephant it cost `restart` and `filter`
+// several per cent); beyond them it hides the latency. Depth first the prefetches cost more than
+// they saved up to a 21 MB scene (blob at 7 subdivisions) and paid at 85 MB; breadth first
+// (kAnyOrder: the node processed next is the one asked for longest ago) they paid from 21 MB and
+// were level or a loss at 5-7 MB (docs/BENCHMARKS.md, eighteenth session).
 template <class Policy, typename T>
 inline bool detail_prefetches(const WideBvh<T>& bvh) {
   constexpr std::size_t kMiB = std::size_t(1) << 20;

@@ -83,9 +83,9 @@ class QueueKernel : public WideKernel<T, C> {
   // Whether the next begin() runs its first pass breadth first: as the constructor fixed it, or
   // (adaptive) while recent depth-first passes deferred fewer than kBreadthFirstBelow subtrees per
   // node traversed, but for every probe_every_-th ray, which runs depth first to keep that average
-  // current. The probes cost: at every 32nd ray they made `queue` 3-6 % slower than `filter` on
-  // CGAL's elephant and on the shell, where no ray closes its bound (eighteenth session), so while
-  // they find nothing to cull they come less often.
+  // current. The probes cost: where no ray closes its bound (CGAL's meshes, the shell at N = 5 and
+  // 15), probing every 32nd ray kept `queue` measurably behind `filter` (docs/BENCHMARKS.md,
+  // eighteenth session), so while the probes find nothing to cull they come less often.
   bool breadth_first() const {
     if (first_pass_ == QueueFirstPass::adaptive)
       return deferred_per_step_ < kBreadthFirstBelow && (rays_ & (probe_every_ - 1)) != probe_every_ - 1;

@@ -317,7 +317,7 @@ struct SimdRay {
         continue;
       }
       // slab()'s swap where inv < 0, as a blend of the planes: a branch on the direction's sign
-      // was mispredicted at each new ray (3.5 % of filter's time on CGAL's elephant).
+      // is mispredicted at each new ray.
       const __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_blendv_ps(L, H, swap_mask[a]), org[a]), inv[a]);
       const __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_blendv_ps(H, L, swap_mask[a]), org[a]), inv[a]);
       tn = _mm256_max_ps(t0, tn);
