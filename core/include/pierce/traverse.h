@@ -219,15 +219,15 @@ inline void detail_prefetch(const WideNode<T>* nodes, const TriBlock<T>* blocks,
 }
 
 // Whether a traversal of `bvh` prefetches the children it will visit. Where the BVH stays in the
-// caches a prefetch is only work (on CGAL's 5 558-triangle elephant it cost `restart` and `filter`
-// several per cent); beyond them it hides the latency. Depth first the prefetches cost more than
-// they saved up to a 21 MB scene (blob at 7 subdivisions) and paid at 85 MB; breadth first
-// (kAnyOrder: the node processed next is the one asked for longest ago) they paid from 21 MB and
-// were level or a loss at 5-7 MB (docs/BENCHMARKS.md, eighteenth session).
+// caches a prefetch is only work; beyond them it hides the latency. From the bench's A/Bs
+// (docs/BENCHMARKS.md, eighteenth session): depth first, the prefetches cost more than they saved
+// on scenes up to 21 MB and paid at 85 MB and more; breadth first (kAnyOrder: the node processed
+// next is the one asked for longest ago, so more of a prefetch's latency is hidden) they cost on
+// CGAL's elephant and armadillo (0.4 and 3.4 MB) and paid on blob and hairball (5.4 and 6.6 MB).
 template <class Policy, typename T>
 inline bool detail_prefetches(const WideBvh<T>& bvh) {
   constexpr std::size_t kMiB = std::size_t(1) << 20;
-  return bvh.memory_bytes() > (Policy::kAnyOrder ? 8 : 32) * kMiB;
+  return bvh.memory_bytes() > (Policy::kAnyOrder ? 4 : 32) * kMiB;
 }
 
 // The pending nodes as the loop sees them. A stack is worked on through locals (buffer pointer and
