@@ -219,11 +219,12 @@ inline void detail_prefetch(const WideNode<T>* nodes, const TriBlock<T>* blocks,
 }
 
 // Whether a traversal of `bvh` prefetches the children it will visit. Where the BVH stays in the
-// caches a prefetch is only work; beyond them it hides the latency. From the bench's A/Bs
-// (docs/BENCHMARKS.md, eighteenth session): depth first, the prefetches cost more than they saved
-// on scenes up to 21 MB and paid at 85 MB and more; breadth first (kAnyOrder: the node processed
-// next is the one asked for longest ago, so more of a prefetch's latency is hidden) they cost on
-// CGAL's elephant and armadillo (0.4 and 3.4 MB) and paid on blob and hairball (5.4 and 6.6 MB).
+// caches a prefetch is only work; beyond them it hides the latency. The thresholds come from the
+// eighteenth session's A/Bs (docs/BENCHMARKS.md): depth first, the prefetches cost more than they
+// saved on scenes up to 21 MB and paid at 85 MB and more; breadth first (kAnyOrder: the node
+// processed next is the one asked for longest ago, so more of a prefetch's latency is hidden) they
+// cost on CGAL's elephant and armadillo (0.4 and 3.4 MB) and paid on blob and hairball (5.4 and
+// 6.6 MB) in one round of the bench, though not in the private A/B program.
 template <class Policy, typename T>
 inline bool detail_prefetches(const WideBvh<T>& bvh) {
   constexpr std::size_t kMiB = std::size_t(1) << 20;
