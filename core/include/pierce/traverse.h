@@ -220,15 +220,15 @@ inline void detail_prefetch(const WideNode<T>* nodes, const TriBlock<T>* blocks,
 
 // Whether a traversal of `bvh` prefetches the children it will visit. Where the BVH stays in the
 // caches a prefetch is only work; beyond them it hides the latency. The thresholds come from the
-// eighteenth session's A/Bs (docs/BENCHMARKS.md): depth first, the prefetches cost more than they
-// saved on scenes up to 21 MB and paid at 85 MB and more; breadth first (kAnyOrder: the node
-// processed next is the one asked for longest ago, so more of a prefetch's latency is hidden) they
-// cost on CGAL's elephant and armadillo (0.4 and 3.4 MB) and paid on blob and hairball (5.4 and
-// 6.6 MB) in one round of the bench, though not in the private A/B program.
+// eighteenth session's A/Bs (docs/BENCHMARKS.md), many alternating runs of one program against
+// plain Embree: depth first, the prefetches cost more than they saved on scenes up to 21 MB (blob
+// at 7 subdivisions) and paid at 85 MB and more; breadth first (kAnyOrder: the node processed next
+// is the one asked for longest ago, so more of a prefetch's latency is hidden) they cost on CGAL's
+// elephant (0.4 MB) and on hairball (6.6 MB), were level on bunny and blob (5 MB) and paid at 21 MB.
 template <class Policy, typename T>
 inline bool detail_prefetches(const WideBvh<T>& bvh) {
   constexpr std::size_t kMiB = std::size_t(1) << 20;
-  return bvh.memory_bytes() > (Policy::kAnyOrder ? 4 : 32) * kMiB;
+  return bvh.memory_bytes() > (Policy::kAnyOrder ? 8 : 32) * kMiB;
 }
 
 // The pending nodes as the loop sees them. A stack is worked on through locals (buffer pointer and
