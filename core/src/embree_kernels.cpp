@@ -176,21 +176,11 @@ EpsilonKernel::EpsilonKernel(const EmbreeAccel& acc, double epsilon_rel, bool co
     : scene_(acc.native()), eps_(epsilon_rel * acc.scene().scale()), count_(count) {}
 
 bool embree_first_hit(const EmbreeAccel& acc, const Ray& ray, Hit& out) {
-  if (!embree_representable(Vec3d(Vec3f(ray.org))) || !embree_representable(Vec3d(Vec3f(ray.dir))) ||
-      empty_range(ray) || ray.tmax < 0)
-    return false;
-  RTCRayHit rh = native_rayhit(ray, float(std::max(0.0, ray.tmin)));
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  rtcIntersect1(acc.native(), &ctx, &rh);
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-  out = Hit{};
-  out.t = rh.ray.tfar;
-  out.geom = rh.hit.geomID;
-  out.prim = rh.hit.primID;
-  out.u = rh.hit.u;
-  out.v = rh.hit.v;
-  return true;
+  // `epsilon`'s first query: one place decides which rays Embree can take (a zero direction or a
+  // NaN range among them) and fills the record.
+  EpsilonKernel first(acc);
+  first.begin(ray);
+  return first.next(out);
 }
 
 }  // namespace pierce

@@ -1,5 +1,6 @@
 // The epsilon baseline is documented as inexact: on touching and duplicated coplanar faces it must
 // actually miss or repeat crossings that the construction (and every exact kernel) counts.
+#include <limits>
 #include <map>
 #include <random>
 
@@ -14,6 +15,38 @@ std::map<std::pair<std::uint32_t, std::uint32_t>, int> tally(const std::vector<H
   std::map<std::pair<std::uint32_t, std::uint32_t>, int> m;
   for (const Hit& h : hits) ++m[{h.geom, h.prim}];
   return m;
+}
+
+// embree_first_hit is `epsilon`'s first hit, and gives none for rays Embree cannot take.
+TEST(Epsilon, EmbreeFirstHitIsEpsilonsFirstHit) {
+  const auto w = make_world({gen::box({0, 0, 0}, {1, 1, 1})});
+  const EmbreeAccel& acc = w->accel.embree();
+  HitIterator eps(w->accel, KernelKind::epsilon);
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> U(-0.2, 1.2), D(-1, 1);
+  int hits = 0;
+  for (int i = 0; i < 100; ++i) {
+    const Ray r{{U(rng), U(rng), -1.0}, {D(rng), D(rng), 1}};
+    const auto want = kernel_hits(eps, r);
+    Hit got;
+    ASSERT_EQ(embree_first_hit(acc, r, got), !want.empty()) << str(r);
+    if (want.empty()) continue;
+    ++hits;
+    EXPECT_EQ(got.t, want.front().t) << str(r);
+    EXPECT_EQ(got.geom, want.front().geom);
+    EXPECT_EQ(got.prim, want.front().prim);
+    EXPECT_EQ(got.enter, want.front().enter);
+  }
+  EXPECT_GT(hits, 20);
+  Hit h;
+  const Vec3d inside{0.5, 0.5, 0.5};
+  EXPECT_FALSE(embree_first_hit(acc, {inside, {0, 0, 0}}, h)) << "zero direction";
+  EXPECT_FALSE(embree_first_hit(acc, {inside, {0, 0, 1}, 0.0, std::numeric_limits<double>::quiet_NaN()}, h))
+      << "NaN tmax";
+  EXPECT_FALSE(embree_first_hit(acc, {inside, {0, 0, 1}, 1.0, 0.5}, h)) << "empty range";
+  EXPECT_FALSE(embree_first_hit(acc, {inside, {0, 0, 1}, -2.0, -1.0}, h)) << "range behind the origin";
+  EXPECT_TRUE(embree_first_hit(acc, {inside, {0, 0, 1}}, h));
+  EXPECT_EQ(h.t, 0.5);
 }
 
 TEST(Epsilon, MissesCrossingsOfTouchingPlates) {
