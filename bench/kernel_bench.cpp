@@ -37,6 +37,7 @@
 #include "embree_reference.h"
 #include "pierce/bvh_builder.h"
 #include "pierce/kernel.h"
+#include "pierce/prefetch_mode.h"
 #include "pierce/render/false_colour.h"
 
 namespace pierce::bench {
@@ -108,6 +109,7 @@ struct Row {
   bool exact = true;
   bool reference = false;
   std::optional<KernelKind> kind;  // empty for the plain Embree reference rows
+  std::optional<PrefetchMode> prefetch;  // the own-BVH kernel rows: the prefetch mode they ran in
   bool counted = false;            // the kernel's counting variant ran: its cells hold counters
   std::vector<Cell> cells;
   std::vector<CellJob> jobs;  // one per cell
@@ -120,7 +122,25 @@ struct Settings {
   bool count = false;  // time the kernels' counting variants and print their counters
   std::string heatmap_dir;  // non-empty: write traversal heat maps of each scene there
   bool force = false;       // overwrite existing heat maps
+  // The prefetch modes the own-BVH kernel rows run in (--prefetch): one row per kernel and mode,
+  // timed in the same interleaved repetitions, so the modes are compared on the same rays in the
+  // same run. The Embree-based rows do not traverse Pierce's BVH and run once.
+  std::vector<PrefetchMode> prefetch{prefetch_mode()};
 };
+
+// The prefetch modes of the run, "auto" or "always,never".
+std::string prefetch_list_text(const Settings& st) {
+  std::string s;
+  for (const PrefetchMode m : st.prefetch) s += (s.empty() ? "" : ",") + std::string(enum_name(m));
+  return s;
+}
+
+// A row's name: the kernel's, and its prefetch mode where the run compares more than one.
+std::string row_name(std::string_view kernel, std::optional<PrefetchMode> mode, const Settings& st) {
+  std::string name(kernel);
+  if (mode && st.prefetch.size() > 1) name += " [" + std::string(enum_name(*mode)) + "]";
+  return name;
+}
 
 // Every cell of every row: a warm-up on the first eighth of the rays, then `reps` timed passes
 // over all of them, interleaved across cells (see CellJob), each after an untimed pass over the
@@ -173,7 +193,7 @@ constexpr std::size_t kGrain = 256;
 template <typename Query>
 Row run_reference(const std::string& name, const std::vector<std::size_t>& columns, const std::vector<Ray>& rays,
                   Query query) {
-  Row row{name, false, true, std::nullopt, false, {}, {}};
+  Row row{name, false, true, std::nullopt, std::nullopt, false, {}, {}};
   auto buffers = std::make_shared<tbb::enumerable_thread_specific<std::vector<Hit>>>();
   for (const std::size_t n : columns) {
     auto pass = [buffers, query, &rays, n](Cell& cell, std::size_t begin, std::size_t end) {
@@ -220,8 +240,10 @@ std::vector<Row> run_references(const EmbreeReference& plain, const EmbreeRefere
   return rows;
 }
 
-Row run_kernel(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays, const Settings& st) {
-  Row row{std::string(kernel_name(kind)), is_exact(kind), false, kind, false, {}, {}};
+// `mode`: the prefetch mode of an own-BVH kernel's passes (empty for the Embree-based kernels).
+Row run_kernel(const Accel& accel, KernelKind kind, std::optional<PrefetchMode> mode, const std::vector<Ray>& rays,
+               const Settings& st) {
+  Row row{row_name(kernel_name(kind), mode, st), is_exact(kind), false, kind, mode, false, {}, {}};
   struct Worker {
     HitIterator it;
     std::vector<Hit> hits;
@@ -233,7 +255,11 @@ Row run_kernel(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays
     opts.count = row.counted = st.count;
     auto workers =
         std::make_shared<Workers>([&accel, kind, opts] { return Worker{HitIterator(accel, kind, opts), {}}; });
-    auto pass = [workers, &rays, n](Cell& cell, std::size_t begin, std::size_t end) {
+    auto pass = [workers, &rays, n, mode](Cell& cell, std::size_t begin, std::size_t end) {
+      // The mode holds for every traversal of this pass, on every thread; the previous one comes
+      // back after it.
+      const PrefetchMode before = prefetch_mode();
+      if (mode) set_prefetch_mode(*mode);
       tbb::enumerable_thread_specific<Tally> local;
       tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, kGrain), [&](const auto& range) {
         Worker& w = workers->local();
@@ -245,6 +271,7 @@ Row run_kernel(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays
           cell.ray_hits[i] = std::uint32_t(w.hits.size());
         }
       });
+      set_prefetch_mode(before);
       return local.combine([](Tally a, const Tally& b) { return a += b; });
     };
     auto counter_sum = [workers] {
@@ -270,7 +297,7 @@ std::string fmt(const char* f, double x) {
   return buf;
 }
 
-constexpr std::size_t kNameWidth = 20;
+constexpr std::size_t kNameWidth = 22;
 
 // `t` left-aligned in `w` columns (at least one space after it).
 std::string pad(const std::string& t, std::size_t w) { return t.size() < w ? t + std::string(w - t.size(), ' ') : t + " "; }
@@ -351,11 +378,12 @@ const Cell* find_cell(const SceneResult& r, const std::string& kernel, std::size
   return nullptr;
 }
 
-// Fastest exact own-BVH kernel (restart, queue, nodecull, filter, buffered) in a column.
-const Row* best_exact_own(const SceneResult& r, std::size_t column) {
+// Fastest exact own-BVH kernel (restart, queue, nodecull, filter, buffered) in a column, among the
+// rows of one prefetch mode.
+const Row* best_exact_own(const SceneResult& r, std::size_t column, PrefetchMode mode) {
   const Row* best = nullptr;
   for (const Row& row : r.rows) {
-    if (!row.exact || row.reference || !row.kind || uses_embree(*row.kind)) continue;
+    if (!row.exact || row.reference || !row.kind || uses_embree(*row.kind) || row.prefetch != mode) continue;
     if (best == nullptr || row.cells[column].median_seconds < best->cells[column].median_seconds) best = &row;
   }
   return best;
@@ -477,26 +505,30 @@ void print_scene(const SceneResult& r, const Settings& st) {
     }
     return " [" + fmt("%.2f", lo) + "-" + fmt("%.2f", hi) + " by repetition]";
   };
-  for (std::size_t c = 0; c < st.columns.size(); ++c) {
-    const Row* best = best_exact_own(r, c);
-    if (!best) continue;
-    const std::size_t n = st.columns[c];
-    std::cout << "  " << pad(column_title(n), 8) << "best exact own-BVH kernel " << pad(best->kernel, 9);
-    const Cell* first = find_cell(r, "embree first hit", 1);
-    const Cell* filter = find_cell(r, "embree all-hits", n);
-    if (n == 1) std::cout << ratio(&best->cells[c], first) << "x first hit" << spread(&best->cells[c], first) << ", "
-                          << ratio(&best->cells[c], find_cell(r, "embree robust 1st", 1)) << "x robust first hit";
-    std::cout << (n == 1 ? ", " : "") << ratio(&best->cells[c], filter) << "x all-hits filter"
-              << (n == 0 ? spread(&best->cells[c], filter) : std::string()) << ", "
-              << ratio(&best->cells[c], find_cell(r, "embree lex-restart", n)) << "x lex-restart";
-    if (n == 5 || n == 15) {
-      const Cell* q = find_cell(r, "queue", n);
-      const Cell* a = find_cell(r, "restart", n);
-      const Cell* f = find_cell(r, "filter", n);
-      if (q && a && f)
-        std::cout << "; queue / min(restart, filter) " << fmt("%.2f", q->median_seconds / std::min(a->median_seconds, f->median_seconds));
+  for (const PrefetchMode mode : st.prefetch) {
+    if (st.prefetch.size() > 1) std::cout << " prefetch " << enum_name(mode) << ":\n";
+    const auto own = [&](const char* kernel) { return row_name(kernel, mode, st); };
+    for (std::size_t c = 0; c < st.columns.size(); ++c) {
+      const Row* best = best_exact_own(r, c, mode);
+      if (!best) continue;
+      const std::size_t n = st.columns[c];
+      std::cout << "  " << pad(column_title(n), 8) << "best exact own-BVH kernel " << pad(best->kernel, 9);
+      const Cell* first = find_cell(r, "embree first hit", 1);
+      const Cell* filter = find_cell(r, "embree all-hits", n);
+      if (n == 1) std::cout << ratio(&best->cells[c], first) << "x first hit" << spread(&best->cells[c], first) << ", "
+                            << ratio(&best->cells[c], find_cell(r, "embree robust 1st", 1)) << "x robust first hit";
+      std::cout << (n == 1 ? ", " : "") << ratio(&best->cells[c], filter) << "x all-hits filter"
+                << (n == 0 ? spread(&best->cells[c], filter) : std::string()) << ", "
+                << ratio(&best->cells[c], find_cell(r, "embree lex-restart", n)) << "x lex-restart";
+      if (n == 5 || n == 15) {
+        const Cell* q = find_cell(r, own("queue"), n);
+        const Cell* a = find_cell(r, own("restart"), n);
+        const Cell* f = find_cell(r, own("filter"), n);
+        if (q && a && f)
+          std::cout << "; queue / min(restart, filter) " << fmt("%.2f", q->median_seconds / std::min(a->median_seconds, f->median_seconds));
+      }
+      std::cout << "\n";
     }
-    std::cout << "\n";
   }
   if (const Cell* e = find_cell(r, "epsilon", 1))
     std::cout << "  epsilon (1 hit) " << ratio(e, find_cell(r, "embree first hit", 1)) << "x plain first hit"
@@ -535,6 +567,7 @@ json scene_json(const SceneResult& r) {
     jr["kernel"] = row.kernel;
     jr["exact"] = row.exact;
     jr["reference"] = row.reference;
+    if (row.prefetch) jr["prefetch"] = enum_name(*row.prefetch);
     jr["gets_max_hits_hint"] = row.kind == KernelKind::nodecull || row.kind == KernelKind::embree_nodecull;
     json cells = json::array();
     for (const Cell& c : row.cells) {
@@ -635,7 +668,13 @@ SceneResult run_scene(const BenchScene& s, const std::vector<KernelKind>& kernel
   // Embree user sets it only where a context filter is used; it is not part of the build timing).
   const EmbreeReference filters(s.scene, ReferenceUse::filters);
   r.rows = run_references(plain, robust, filters, s.rays, st);
-  for (const KernelKind k : kernels) r.rows.push_back(run_kernel(accel, k, s.rays, st));
+  for (const KernelKind k : kernels) {
+    if (uses_embree(k)) {
+      r.rows.push_back(run_kernel(accel, k, std::nullopt, s.rays, st));
+      continue;
+    }
+    for (const PrefetchMode mode : st.prefetch) r.rows.push_back(run_kernel(accel, k, mode, s.rays, st));
+  }
   std::cerr << "[" << s.name << "] timing " << r.rows.size() << " rows, repetitions interleaved\n";
   time_rows(r.rows, s.rays.size(), st.reps);
   r.reference_mrays = mrays_per_s(r.rows.front().cells[0], s.rays.size());
@@ -680,6 +719,10 @@ int run(int argc, char** argv) {
   app.add_option("--seed", seed, "seed of the scenes and rays (default 1)");
   std::string column_list;
   app.add_option("--columns", column_list, "comma-separated N of the columns, 0 or all = all hits (default 1,5,15,all)");
+  std::string prefetch_list;
+  app.add_option("--prefetch", prefetch_list,
+                 "comma-separated prefetch modes of the own-BVH kernel rows, each a row of its own: auto, always, "
+                 "never (default: PIERCE_PREFETCH, else auto)");
   CLI11_PARSE(app, argc, argv);
   st.force = force;
   if (!st.heatmap_dir.empty() && !std::filesystem::is_directory(st.heatmap_dir)) {
@@ -701,6 +744,19 @@ int run(int argc, char** argv) {
         std::cerr << "error: --columns: '" << c << "' is not a number or 'all'\n";
         return 2;
       }
+    }
+  }
+  if (!prefetch_list.empty()) {
+    st.prefetch.clear();
+    std::stringstream ss(prefetch_list);
+    for (std::string name; std::getline(ss, name, ',');) {
+      const auto mode = parse_enum<PrefetchMode>(name);
+      if (!mode) {
+        std::cerr << "error: --prefetch: unknown prefetch mode '" << name << "' (expected "
+                  << enum_name_list<PrefetchMode>() << ")\n";
+        return 2;
+      }
+      if (std::find(st.prefetch.begin(), st.prefetch.end(), *mode) == st.prefetch.end()) st.prefetch.push_back(*mode);
     }
   }
   std::vector<KernelKind> kernels;
@@ -752,7 +808,8 @@ int run(int argc, char** argv) {
             << "machine: " << cpu_model() << ", " << hw << " hardware threads, " << threads_used << " used\n"
             << "load average at start: " << load_before << "\n"
             << "Embree " << RTC_VERSION_STRING << ", oneTBB " << TBB_VERSION_STRING << ", counters "
-            << (st.count ? "on (the kernels' counting variants are timed)" : "off") << (quick ? ", --quick" : "") << "\n"
+            << (st.count ? "on (the kernels' counting variants are timed)" : "off") << (quick ? ", --quick" : "")
+            << ", prefetch " << prefetch_list_text(st) << "\n"
             << "rays per scene " << ray_count << ", seed " << seed << ", " << st.reps
             << " timed repetitions per cell (median) after a warm-up on 1/8 of the rays, each after an untimed pass over 1/16\n";
 
@@ -775,7 +832,8 @@ int run(int argc, char** argv) {
                   {"load_average_start", load_before}};
   j["versions"] = {{"embree", RTC_VERSION_STRING}, {"tbb", TBB_VERSION_STRING}};
   j["config"] = {{"rays", ray_count}, {"seed", seed},         {"reps", st.reps}, {"build_reps", st.build_reps},
-                 {"quick", quick},    {"counters", st.count}, {"warmup_fraction", 0.125}};
+                 {"quick", quick},    {"counters", st.count}, {"warmup_fraction", 0.125},
+                 {"prefetch", prefetch_list_text(st)}};
   j["scenes"] = json::array();
   for (const auto& s : scenes) {
     const SceneResult r = run_scene(*s, kernels, st);

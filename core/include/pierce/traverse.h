@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "pierce/counters.h"
+#include "pierce/prefetch_mode.h"
 #include "pierce/simd/simd_level.h"
 #include "pierce/simd/wide_ops.h"
 #include "pierce/wide_bvh.h"
@@ -218,17 +219,11 @@ inline void detail_prefetch(const WideNode<T>* nodes, const TriBlock<T>* blocks,
   for (std::uint32_t i = 0; i < n; ++i) detail_prefetch(nodes, blocks, entries[i].ref);
 }
 
-// Whether a traversal of `bvh` prefetches the children it will visit. Where the BVH stays in the
-// caches a prefetch is only work; beyond them it hides the latency. The thresholds come from the
-// eighteenth session's A/Bs (docs/BENCHMARKS.md), many alternating runs of one program against
-// plain Embree: depth first, the prefetches cost more than they saved on scenes up to 21 MB (blob
-// at 7 subdivisions) and paid at 85 MB and more; breadth first (kAnyOrder: the node processed next
-// is the one asked for longest ago, so more of a prefetch's latency is hidden) they cost on CGAL's
-// elephant (0.4 MB) and on hairball (6.6 MB), were level on bunny and blob (5 MB) and paid at 21 MB.
+// Whether a traversal of `bvh` prefetches the children it will visit (prefetch_mode.h: by the
+// BVH's size unless PIERCE_PREFETCH or set_prefetch_mode() forces it). One decision per traversal.
 template <class Policy, typename T>
 inline bool detail_prefetches(const WideBvh<T>& bvh) {
-  constexpr std::size_t kMiB = std::size_t(1) << 20;
-  return bvh.memory_bytes() > (Policy::kAnyOrder ? 8 : 32) * kMiB;
+  return prefetches(bvh.memory_bytes(), Policy::kAnyOrder);
 }
 
 // The pending nodes as the loop sees them. A stack is worked on through locals (buffer pointer and

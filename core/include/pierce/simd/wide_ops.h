@@ -65,7 +65,11 @@ struct ScalarOps {
   explicit ScalarOps(const TraversalRay<T>& ray) : r(ray), oct(octant(ray)) {}
 
   std::uint32_t node_hits(const WideNode<T>& n, T lo, T hi, T* tn, NodeRef* child) const {
-    const std::uint32_t order = n.order[oct], valid = order >> 24;
+    return node_hits(n, n.order[oct], lo, hi, tn, child);
+  }
+  // The same, with the node's order for the ray's octant already read.
+  std::uint32_t node_hits(const WideNode<T>& n, std::uint32_t order, T lo, T hi, T* tn, NodeRef* child) const {
+    const std::uint32_t valid = order >> 24;
     std::uint32_t mask = 0;
     for (int k = 0; k < kWideArity; ++k) {
       const int s = WideNode<T>::slot_at_rank(order, k);
@@ -88,8 +92,8 @@ struct ScalarOps {
                           std::uint32_t& others) const {
     T tn[kWideArity];
     NodeRef child[kWideArity];
-    const std::uint32_t mask = node_hits(n, lo, hi, tn, child);
     const std::uint32_t order = n.order[oct];
+    const std::uint32_t mask = node_hits(n, order, lo, hi, tn, child);
     std::uint32_t count = 0;
     others = 0;
     for (int k = kWideArity - 1; k >= 0; --k)

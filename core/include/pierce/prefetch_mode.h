@@ -1,0 +1,56 @@
+#pragma once
+// Whether the wide-BVH traversal prefetches the children it is going to visit (traverse.h).
+// Where the BVH stays in the caches a prefetch is only work; where it outgrows them, it hides the
+// latency. `automatic` (the default) decides by the BVH's size (prefetches_by_size); `always` and
+// `never` force it either way, so that a bench can measure both on the same scene
+// (pierce_bench_kernels --prefetch) and the tests run the prefetching loop on small scenes too.
+// Chosen once from the environment variable PIERCE_PREFETCH (auto | always | never), or set with
+// set_prefetch_mode(). It changes the time a traversal takes, never what it finds.
+#include <atomic>
+#include <cstddef>
+
+#include "pierce/enum_names.h"
+
+namespace pierce {
+
+enum class PrefetchMode : int { automatic = 0, always = 1, never = 2 };
+
+template <>
+struct EnumNames<PrefetchMode> {
+  static constexpr std::string_view what = "prefetch mode";
+  static constexpr NamedValue<PrefetchMode> values[] = {
+      {PrefetchMode::automatic, "auto"}, {PrefetchMode::always, "always"}, {PrefetchMode::never, "never"}};
+};
+
+namespace detail {
+// The mode in use, read by every traversal (one relaxed load, inline: no call per traversal).
+extern std::atomic<int> g_prefetch_mode;
+}  // namespace detail
+
+// The mode in use: PIERCE_PREFETCH or set_prefetch_mode(); `automatic` if neither says otherwise.
+inline PrefetchMode prefetch_mode() { return PrefetchMode(detail::g_prefetch_mode.load(std::memory_order_relaxed)); }
+// Sets the mode for every traversal that starts after it, on every thread.
+void set_prefetch_mode(PrefetchMode mode);
+
+// The automatic choice for a BVH of `bvh_bytes` (WideBvh::memory_bytes): prefetch beyond 32 MB
+// depth first, beyond 8 MB breadth first (`any_order`: the node processed next is the one asked for
+// longest ago, so more of each prefetch's latency is hidden and it pays on smaller BVHs). The
+// thresholds are fixed numbers for the machine they were measured on (docs/BENCHMARKS.md, the
+// eighteenth and nineteenth sessions: `pierce_bench_kernels --prefetch auto,always,never` measures
+// them on any scene); in a VM the cache sizes cannot be read reliably at run time.
+inline bool prefetches_by_size(std::size_t bvh_bytes, bool any_order) {
+  constexpr std::size_t kMiB = std::size_t(1) << 20;
+  return bvh_bytes > (any_order ? 8 : 32) * kMiB;
+}
+
+// Whether a traversal of a BVH of `bvh_bytes` prefetches, in the mode in use.
+inline bool prefetches(std::size_t bvh_bytes, bool any_order) {
+  switch (prefetch_mode()) {
+    case PrefetchMode::always: return true;
+    case PrefetchMode::never: return false;
+    case PrefetchMode::automatic: break;
+  }
+  return prefetches_by_size(bvh_bytes, any_order);
+}
+
+}  // namespace pierce

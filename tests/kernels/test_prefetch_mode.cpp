@@ -1,0 +1,77 @@
+// The prefetch mode (prefetch_mode.h) changes what a traversal asks the memory for, never what it
+// finds: every exact own-BVH kernel returns the same hits, bit for bit, with the prefetch forced on
+// and forced off. The automatic choice follows the BVH's size and the traversal order. (The whole
+// suite also runs with PIERCE_PREFETCH=always in ctest: kernels.prefetch_always.)
+#include "pierce/prefetch_mode.h"
+#include "test_util.h"
+
+namespace pierce::test {
+namespace {
+
+// Restores the mode in use when a test ends.
+struct PrefetchGuard {
+  PrefetchMode saved = prefetch_mode();
+  ~PrefetchGuard() { set_prefetch_mode(saved); }
+};
+
+TEST(PrefetchMode, NamesParse) {
+  for (const PrefetchMode m : {PrefetchMode::automatic, PrefetchMode::always, PrefetchMode::never})
+    EXPECT_EQ(parse_enum<PrefetchMode>(enum_name(m)), m);
+  EXPECT_EQ(enum_name(PrefetchMode::automatic), "auto");
+  EXPECT_FALSE(parse_enum<PrefetchMode>("sometimes"));
+  EXPECT_THROW(parse_enum_or_throw<PrefetchMode>("sometimes"), std::invalid_argument);
+}
+
+TEST(PrefetchMode, AutomaticDecidesBySizeAndOrder) {
+  PrefetchGuard guard;
+  constexpr std::size_t kMiB = std::size_t(1) << 20;
+  set_prefetch_mode(PrefetchMode::automatic);
+  EXPECT_EQ(prefetch_mode(), PrefetchMode::automatic);
+  // Breadth first (any order) from 8 MB on, depth first from 32 MB on.
+  EXPECT_FALSE(prefetches(8 * kMiB, true));
+  EXPECT_TRUE(prefetches(8 * kMiB + 1, true));
+  EXPECT_FALSE(prefetches(32 * kMiB, false));
+  EXPECT_TRUE(prefetches(32 * kMiB + 1, false));
+  EXPECT_FALSE(prefetches(16 * kMiB, false));
+  set_prefetch_mode(PrefetchMode::always);
+  EXPECT_TRUE(prefetches(0, false));
+  EXPECT_TRUE(prefetches(0, true));
+  set_prefetch_mode(PrefetchMode::never);
+  EXPECT_FALSE(prefetches(std::size_t(1) << 40, false));
+  EXPECT_FALSE(prefetches(std::size_t(1) << 40, true));
+}
+
+TEST(PrefetchMode, IdenticalHitsWithAndWithout) {
+  PrefetchGuard guard;
+  auto meshes = gen::stacked_plates(6);
+  meshes.push_back(gen::duplicated(gen::box({0.2, 0.2, 0.1}, {0.7, 0.7, 0.5}, "dup"), 3, true));
+  meshes.push_back(gen::blob(3));
+  const auto w = make_world(meshes);
+  const BBoxd box = w->scene.bounds();
+  std::vector<Ray> rays = random_rays(box, 300, 21);
+  const std::vector<Ray> at_vertices = vertex_rays(meshes, box, 300, 22);
+  rays.insert(rays.end(), at_vertices.begin(), at_vertices.end());
+
+  for (const KernelKind kind : exact_kernels()) {
+    if (uses_embree(kind)) continue;
+    for (const std::size_t max_hits : {std::size_t(1), std::size_t(5), std::size_t(0)}) {
+      std::vector<std::vector<Hit>> want;
+      for (const PrefetchMode mode : {PrefetchMode::never, PrefetchMode::always}) {
+        set_prefetch_mode(mode);
+        HitIterator it(w->accel, kind, KernelOptions{});
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+          const std::vector<Hit> got = kernel_hits(it, rays[i], max_hits);
+          if (mode == PrefetchMode::never) {
+            want.push_back(got);
+            continue;
+          }
+          ASSERT_TRUE(same_hits(want[i], got)) << kernel_name(kind) << ", max_hits " << max_hits << ", ray " << i
+                                               << " " << str(rays[i]);
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace pierce::test
