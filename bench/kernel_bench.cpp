@@ -719,6 +719,10 @@ int run(int argc, char** argv) {
   app.add_option("--seed", seed, "seed of the scenes and rays (default 1)");
   std::string column_list;
   app.add_option("--columns", column_list, "comma-separated N of the columns, 0 or all = all hits (default 1,5,15,all)");
+  int blob_subdivisions = 0;
+  app.add_option("--blob-subdivisions", blob_subdivisions,
+                 "subdivisions of the blob scene (default 6: 82k triangles; each one more is 4x the triangles, 8: 1.3 M)")
+      ->check(CLI::Range(1, 9));
   std::string prefetch_list;
   app.add_option("--prefetch", prefetch_list,
                  "comma-separated prefetch modes of the own-BVH kernel rows, each a row of its own: auto, always, "
@@ -797,6 +801,7 @@ int run(int argc, char** argv) {
     if (reps_opt->count() == 0) st.reps = 1;
     if (build_reps_opt->count() == 0) st.build_reps = 1;
   }
+  if (blob_subdivisions > 0) size.blob_subdivisions = blob_subdivisions;
   const int hw = int(std::thread::hardware_concurrency());
   if (threads == 0) threads = tbb::info::default_concurrency();
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));

@@ -27,12 +27,12 @@ TEST(PrefetchMode, AutomaticDecidesBySizeAndOrder) {
   constexpr std::size_t kMiB = std::size_t(1) << 20;
   set_prefetch_mode(PrefetchMode::automatic);
   EXPECT_EQ(prefetch_mode(), PrefetchMode::automatic);
-  // Breadth first (any order) from 8 MB on, depth first from 32 MB on.
+  // Breadth first (any order) beyond 8 MB, depth first beyond 16 MB.
   EXPECT_FALSE(prefetches(8 * kMiB, true));
   EXPECT_TRUE(prefetches(8 * kMiB + 1, true));
-  EXPECT_FALSE(prefetches(32 * kMiB, false));
-  EXPECT_TRUE(prefetches(32 * kMiB + 1, false));
   EXPECT_FALSE(prefetches(16 * kMiB, false));
+  EXPECT_TRUE(prefetches(16 * kMiB + 1, false));
+  EXPECT_FALSE(prefetches(12 * kMiB, false));
   set_prefetch_mode(PrefetchMode::always);
   EXPECT_TRUE(prefetches(0, false));
   EXPECT_TRUE(prefetches(0, true));
