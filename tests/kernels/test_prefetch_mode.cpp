@@ -43,14 +43,9 @@ TEST(PrefetchMode, AutomaticDecidesBySizeAndOrder) {
 
 TEST(PrefetchMode, IdenticalHitsWithAndWithout) {
   PrefetchGuard guard;
-  auto meshes = gen::stacked_plates(6);
-  meshes.push_back(gen::duplicated(gen::box({0.2, 0.2, 0.1}, {0.7, 0.7, 0.5}, "dup"), 3, true));
-  meshes.push_back(gen::blob(3));
-  const auto w = make_world(meshes);
-  const BBoxd box = w->scene.bounds();
-  std::vector<Ray> rays = random_rays(box, 300, 21);
-  const std::vector<Ray> at_vertices = vertex_rays(meshes, box, 300, 22);
-  rays.insert(rays.end(), at_vertices.begin(), at_vertices.end());
+  const HardCases cases = hard_cases(21);
+  const auto& w = cases.world;
+  const std::vector<Ray>& rays = cases.rays;
 
   for (const KernelKind kind : exact_kernels()) {
     if (uses_embree(kind)) continue;

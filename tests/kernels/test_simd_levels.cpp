@@ -38,14 +38,9 @@ TEST(SimdLevels, NamesParseAndClamp) {
 
 TEST(SimdLevels, IdenticalHitsAtEveryLevel) {
   LevelGuard guard;
-  auto meshes = gen::stacked_plates(6);
-  meshes.push_back(gen::duplicated(gen::box({0.2, 0.2, 0.1}, {0.7, 0.7, 0.5}, "dup"), 3, true));
-  meshes.push_back(gen::blob(3));
-  const auto w = make_world(meshes);
-  const BBoxd box = w->scene.bounds();
-  std::vector<Ray> rays = random_rays(box, 300, 11);
-  const std::vector<Ray> at_vertices = vertex_rays(meshes, box, 300, 12);
-  rays.insert(rays.end(), at_vertices.begin(), at_vertices.end());
+  HardCases cases = hard_cases(11);
+  const auto& w = cases.world;
+  std::vector<Ray>& rays = cases.rays;
   for (int i = 0; i < 100; ++i) {  // axis-parallel, along the plates' shared faces and edges
     const double x = (i % 10) / 9.0, y = (i / 10) / 9.0;
     rays.push_back({{x, y, -1.0}, {0, 0, 1}});

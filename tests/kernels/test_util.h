@@ -186,6 +186,27 @@ inline std::vector<Ray> vertex_rays(const std::vector<gen::Mesh>& meshes, const 
   return rays;
 }
 
+// Touching plates, a box duplicated with alternating winding and a blob in one scene, with random
+// rays and rays through its vertices (300 of each): hard cases for comparing two ways of
+// traversing the same BVH hit for hit.
+struct HardCases {
+  std::vector<gen::Mesh> meshes;
+  std::unique_ptr<World> world;
+  std::vector<Ray> rays;
+};
+inline HardCases hard_cases(std::uint64_t seed) {
+  HardCases h;
+  h.meshes = gen::stacked_plates(6);
+  h.meshes.push_back(gen::duplicated(gen::box({0.2, 0.2, 0.1}, {0.7, 0.7, 0.5}, "dup"), 3, true));
+  h.meshes.push_back(gen::blob(3));
+  h.world = make_world(h.meshes);
+  const BBoxd box = h.world->scene.bounds();
+  h.rays = random_rays(box, 300, seed);
+  const std::vector<Ray> at_vertices = vertex_rays(h.meshes, box, 300, seed + 1);
+  h.rays.insert(h.rays.end(), at_vertices.begin(), at_vertices.end());
+  return h;
+}
+
 inline Ray transformed(Ray r, double scale, Vec3d offset) {
   r.org = r.org * scale + offset;
   r.dir = r.dir * scale;
