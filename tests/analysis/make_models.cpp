@@ -31,7 +31,8 @@ bool write_hollow_sphere(const std::string& path) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
+  // An option (--help) is not a directory to write into.
+  if (argc != 2 || argv[1][0] == '-') {
     std::fprintf(stderr, "usage: %s DIR\n", argv[0]);
     return 2;
   }

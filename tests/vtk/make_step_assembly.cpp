@@ -6,7 +6,8 @@
 #include "step_assembly.h"
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
+  // An option (--help) is not a file to write.
+  if (argc != 2 || argv[1][0] == '-') {
     std::cerr << "usage: " << argv[0] << " OUT.step\n";
     return 2;
   }
