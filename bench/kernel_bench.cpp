@@ -723,10 +723,12 @@ int run(int argc, char** argv) {
   app.add_option("--blob-subdivisions", blob_subdivisions,
                  "subdivisions of the blob scene (default 6: 82k triangles; each one more is 4x the triangles, 8: 1.3 M)")
       ->check(CLI::Range(1, 9));
-  std::string prefetch_list;
-  app.add_option("--prefetch", prefetch_list,
+  std::vector<std::string> prefetch_names;
+  app.add_option("--prefetch", prefetch_names,
                  "comma-separated prefetch modes of the own-BVH kernel rows, each a row of its own: auto, always, "
-                 "never (default: PIERCE_PREFETCH, else auto)");
+                 "never (default: PIERCE_PREFETCH, else auto)")
+      ->delimiter(',')
+      ->check(CLI::IsMember(enum_names<PrefetchMode>()));
   CLI11_PARSE(app, argc, argv);
   st.force = force;
   if (!st.heatmap_dir.empty() && !std::filesystem::is_directory(st.heatmap_dir)) {
@@ -750,17 +752,11 @@ int run(int argc, char** argv) {
       }
     }
   }
-  if (!prefetch_list.empty()) {
+  if (!prefetch_names.empty()) {
     st.prefetch.clear();
-    std::stringstream ss(prefetch_list);
-    for (std::string name; std::getline(ss, name, ',');) {
-      const auto mode = parse_enum<PrefetchMode>(name);
-      if (!mode) {
-        std::cerr << "error: --prefetch: unknown prefetch mode '" << name << "' (expected "
-                  << enum_name_list<PrefetchMode>() << ")\n";
-        return 2;
-      }
-      if (std::find(st.prefetch.begin(), st.prefetch.end(), *mode) == st.prefetch.end()) st.prefetch.push_back(*mode);
+    for (const std::string& name : prefetch_names) {
+      const PrefetchMode mode = parse_enum_or_throw<PrefetchMode>(name);  // checked by CLI11 already
+      if (std::find(st.prefetch.begin(), st.prefetch.end(), mode) == st.prefetch.end()) st.prefetch.push_back(mode);
     }
   }
   std::vector<KernelKind> kernels;

@@ -2,6 +2,9 @@
 // finds: every exact own-BVH kernel returns the same hits, bit for bit, with the prefetch forced on
 // and forced off. The automatic choice follows the BVH's size and the traversal order. (The whole
 // suite also runs with PIERCE_PREFETCH=always in ctest: kernels.prefetch_always.)
+#include <cstdlib>
+#include <optional>
+
 #include "pierce/prefetch_mode.h"
 #include "test_util.h"
 
@@ -20,6 +23,16 @@ TEST(PrefetchMode, NamesParse) {
   EXPECT_EQ(enum_name(PrefetchMode::automatic), "auto");
   EXPECT_FALSE(parse_enum<PrefetchMode>("sometimes"));
   EXPECT_THROW(parse_enum_or_throw<PrefetchMode>("sometimes"), std::invalid_argument);
+}
+
+// ctest's kernels.prefetch_always and oracle.prefetch_always rely on PIERCE_PREFETCH reaching the
+// library: without it they would run the default mode and test nothing new.
+TEST(PrefetchMode, EnvironmentSetsTheMode) {
+  const char* env = std::getenv("PIERCE_PREFETCH");
+  if (env == nullptr || *env == '\0') GTEST_SKIP() << "PIERCE_PREFETCH not set (ctest sets it in kernels.prefetch_always)";
+  const std::optional<PrefetchMode> want = parse_enum<PrefetchMode>(env);
+  ASSERT_TRUE(want) << "PIERCE_PREFETCH=" << env;
+  EXPECT_EQ(prefetch_mode(), *want);
 }
 
 TEST(PrefetchMode, AutomaticDecidesBySizeAndOrder) {
