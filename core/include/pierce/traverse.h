@@ -330,7 +330,7 @@ HeapCursor<T> cursor_for(NodeHeap<T>& h) {
 // is done, false when the policy suspended it (the next node is back on `container`).
 template <class Ops, typename T, class Container, class Policy, class C>
 inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Container& container, Policy& p, C& c) {
-  const Ops ops(r);
+  const Ops ops(r, bvh.scene_max_abs);
   const WideNode<T>* const nodes = bvh.nodes.data();
   const TriBlock<T>* const blocks = bvh.blocks.data();
   auto pending = cursor_for<Policy>(container);
@@ -434,7 +434,7 @@ inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Conta
 namespace detail {
 
 template <typename T, class Pending, class Policy, class C>
-__attribute__((target("avx2"), flatten)) bool traverse_avx2(const WideBvh<T>& bvh, const TraversalRay<T>& r,
+__attribute__((target(PIERCE_AVX2_TARGET), flatten)) bool traverse_avx2(const WideBvh<T>& bvh, const TraversalRay<T>& r,
                                                             Pending& pending, Policy& p, C& c) {
   return traverse_with<simd::Avx2Ops>(bvh, r, pending, p, c);
 }

@@ -10,10 +10,13 @@
 //    non-zero and finite has exact signs already and is finished in SIMD (det, t, the clamp into
 //    the triangle's slab interval, the range); only lanes with a zero or non-finite edge function
 //    (or an overflowed t) go to the exact scalar test (triangle.h). The scalar level sends them all.
-// All are bit-for-bit the scalar arithmetic of slab.h and triangle.h, lane by lane: the same
-// operations in the same order (the project builds with -ffp-contract=off, so nothing is fused),
-// min/max with the scalar code's NaN behaviour, ordered compares. So the box test keeps its
-// monotonicity and widened far bound, and a rejected lane is one the scalar test rejects too.
+// The leaf test is bit for bit the scalar arithmetic of slab.h and triangle.h, lane by lane: the
+// same operations in the same order (the project builds with -ffp-contract=off, so nothing is
+// fused), min/max with the scalar code's NaN behaviour, ordered compares; a rejected lane is one the
+// scalar test rejects too. The node test of the SIMD levels is one fused multiply-add per plane
+// (as Embree's), with per-ray offsets that make each box's interval contain the one slab() and
+// widen() give it (SimdRay::node_offsets): every box a triangle lies in still passes wherever the
+// triangle's own box passes, which is all the exact test relies on. The scalar level keeps slab().
 //
 // An Ops object is made once per traversal from the ray: it holds the ray's broadcast constants and
 // per-axis choices (near plane, parallel axes), so the loop keeps them in registers.
@@ -32,7 +35,8 @@
 
 namespace pierce::simd {
 
-#define PIERCE_AVX512_TARGET "avx2,avx512f,avx512vl,avx512bw,avx512dq,bmi,bmi2"
+#define PIERCE_AVX2_TARGET "avx2,fma,bmi,bmi2"
+#define PIERCE_AVX512_TARGET "avx2,fma,avx512f,avx512vl,avx512bw,avx512dq,bmi,bmi2"
 
 // Octant of a direction: bit a set where component a is negative (WideNode::order's index).
 template <typename T>
@@ -62,7 +66,7 @@ template <typename T>
 struct ScalarOps {
   const TraversalRay<T>& r;
   int oct;
-  explicit ScalarOps(const TraversalRay<T>& ray) : r(ray), oct(octant(ray)) {}
+  ScalarOps(const TraversalRay<T>& ray, double /*scene_max_abs*/) : r(ray), oct(octant(ray)) {}
 
   std::uint32_t node_hits(const WideNode<T>& n, T lo, T hi, T* tn, NodeRef* child) const {
     return node_hits(n, n.order[oct], lo, hi, tn, child);
@@ -121,7 +125,7 @@ constexpr float kWidenDown = 1.0f - 1.0f / float(1 << 20);
 // no operand is NaN: lo and hi are not, tn and tf never are (slabs() starts from -inf and +inf
 // and keeps the non-NaN operand), and where wf is NaN (an infinite far distance plus an infinite
 // pad) min(hi, wf) passes the NaN on, so the compare fails as the scalar one does.
-__attribute__((target("avx2"))) inline __m256 in_range(__m256 tn, __m256 wf, float lo, float hi) {
+__attribute__((target(PIERCE_AVX2_TARGET))) inline __m256 in_range(__m256 tn, __m256 wf, float lo, float hi) {
   return _mm256_cmp_ps(_mm256_max_ps(_mm256_set1_ps(lo), tn), _mm256_min_ps(_mm256_set1_ps(hi), wf), _CMP_LE_OQ);
 }
 __attribute__((target(PIERCE_AVX512_TARGET))) inline __mmask8 in_range(__mmask8 lanes, __m256 tn, __m256 wf,
@@ -134,20 +138,20 @@ __attribute__((target(PIERCE_AVX512_TARGET))) inline __mmask8 in_range(__mmask8 
 // below is the larger of the two products (rounding is monotone), so a max replaces the sign test
 // and the blend (one dependent step less on the way to the next node). A far distance is never
 // NaN: slabs() starts its min from +inf and keeps the non-NaN operand.
-__attribute__((target("avx2"))) inline __m256 widen(__m256 tf, __m256 pad) {
+__attribute__((target(PIERCE_AVX2_TARGET))) inline __m256 widen(__m256 tf, __m256 pad) {
   return _mm256_add_ps(_mm256_max_ps(_mm256_mul_ps(tf, _mm256_set1_ps(kWidenDown)),
                                      _mm256_mul_ps(tf, _mm256_set1_ps(kWidenUp))),
                        pad);
 }
 
 // Lane k of the result: the slot ranked k-th in `order` (WideNode::order).
-__attribute__((target("avx2"))) inline __m256i rank_slots(std::uint32_t order) {
+__attribute__((target(PIERCE_AVX2_TARGET))) inline __m256i rank_slots(std::uint32_t order) {
   const __m256i shifts = _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21);
   return _mm256_and_si256(_mm256_srlv_epi32(_mm256_set1_epi32(int(order)), shifts), _mm256_set1_epi32(7));
 }
 
 // Lane k of the result: the slot ranked (7-k)-th, so lanes run far to near.
-__attribute__((target("avx2"))) inline __m256i rank_slots_far_to_near(std::uint32_t order) {
+__attribute__((target(PIERCE_AVX2_TARGET))) inline __m256i rank_slots_far_to_near(std::uint32_t order) {
   const __m256i shifts = _mm256_setr_epi32(21, 18, 15, 12, 9, 6, 3, 0);
   return _mm256_and_si256(_mm256_srlv_epi32(_mm256_set1_epi32(int(order)), shifts), _mm256_set1_epi32(7));
 }
@@ -162,7 +166,7 @@ inline int nearest_slot(std::uint32_t order, int lane) {
 
 // The eight (tn, child) entries of a node in lane order, as NodeEntry<float> pairs: entries 0-3 in
 // `first`, 4-7 in `second`.
-__attribute__((target("avx2"))) inline void entry_pairs(__m256 tn, __m256i child, __m256i& first, __m256i& second) {
+__attribute__((target(PIERCE_AVX2_TARGET))) inline void entry_pairs(__m256 tn, __m256i child, __m256i& first, __m256i& second) {
   const __m256i t = _mm256_castps_si256(tn);
   const __m256i lo = _mm256_unpacklo_epi32(t, child), hi = _mm256_unpackhi_epi32(t, child);
   first = _mm256_permute2x128_si256(lo, hi, 0x20);
@@ -170,12 +174,12 @@ __attribute__((target("avx2"))) inline void entry_pairs(__m256 tn, __m256i child
 }
 
 // Lane k of a node's entry distances.
-__attribute__((target("avx2"))) inline float lane_tn(__m256 tn, int k) {
+__attribute__((target(PIERCE_AVX2_TARGET))) inline float lane_tn(__m256 tn, int k) {
   return _mm_cvtss_f32(_mm256_castps256_ps128(_mm256_permutevar8x32_ps(tn, _mm256_set1_epi32(k))));
 }
 
 // Lane k of a node's entry distances and child references, as a NodeEntry.
-__attribute__((target("avx2"))) inline NodeEntry<float> lane_entry(__m256 tn, __m256i child, int k) {
+__attribute__((target(PIERCE_AVX2_TARGET))) inline NodeEntry<float> lane_entry(__m256 tn, __m256i child, int k) {
   return {lane_tn(tn, k),
           NodeRef(_mm_cvtsi128_si32(_mm256_castsi256_si128(_mm256_permutevar8x32_epi32(child, _mm256_set1_epi32(k)))))};
 }
@@ -202,16 +206,20 @@ struct SimdRay {
   __m256 pad;
   __m256 okx, oky, okz, sx, sy;  // triangle test: origin in the shear frame's axes, shear constants
   __m256 swap_mask[3];  // all bits set where inv[a] < 0 (slab() swaps the planes)
+  // The fused node test's offsets (node_offsets()): fma(near plane, inv, near_c) is at most slab()'s
+  // entry distance, fma(far plane, inv, far_c) at least widen() of its exit distance.
+  __m256 near_c[3], far_c[3];
   float sz;
   std::uint32_t near_offset[3], far_offset[3];  // byte offsets of the near and far planes in a WideNode
   bool zero[3];
   bool any_zero;  // a direction component is zero: the slab test's parallel-axis path
+  bool fused;     // the node test runs on fused multiply-adds (fused_slabs(); every inv and offset finite)
   int oct;
   // Byte offsets of the shear frame's axes kx, ky, kz within one corner of a TriBlock (v[k]): three
   // offsets serve all three corners, which keeps the leaf test's address registers few.
   std::uint32_t kx_offset, ky_offset, kz_offset;
 
-  __attribute__((target("avx2"))) explicit SimdRay(const TraversalRay<float>& r) {
+  __attribute__((target(PIERCE_AVX2_TARGET))) SimdRay(const TraversalRay<float>& r, double scene_max_abs) {
     for (int a = 0; a < 3; ++a) {
       org[a] = _mm256_set1_ps(r.org[a]);
       inv[a] = _mm256_set1_ps(r.inv[a]);
@@ -234,6 +242,47 @@ struct SimdRay {
     sx = _mm256_set1_ps(r.sx), sy = _mm256_set1_ps(r.sy);
     sz = r.sz;
     oct = octant(r);
+    node_offsets(r, scene_max_abs);
+  }
+
+  // The fused node test's offsets, per axis a with o = org[a], v = inv[a] (floats), and
+  // y = (R + |o|) |v|, R the largest |coordinate| any box holds:
+  //   near_c <= -o v - E and far_c >= -o v + F, with E = 3u y and F = (k + 5u) y + pad (plus room
+  //   for the rounding of these constants; u = 2^-24, k = 2^-20, widen()'s factor).
+  // Why fma(P, v, near_c) <= slab()'s (P - o) * v for a plane P with |P| <= R: the exact value
+  // P v + near_c lies below fl(P - o) v, since fl(P - o) differs from P - o by at most u |P - o|
+  // and |P - o| |v| <= y; rounding is monotone, so the rounded results keep the order. Likewise
+  // fma(Q, v, far_c) >= widen((Q - o) * v), whose roundings add at most (k + 3u) y + pad (a
+  // little more for subnormals, the 2^-140 terms). max/min over the axes and widen() are monotone,
+  // so the node's [tn, wf] contains slab()'s widened interval for it, which contains that of every
+  // box inside it, a triangle's own among them: "triangle hit => every enclosing box hit" holds.
+  // The constants come from exact products (o v of two floats is exact in double) and double sums
+  // (relative error 2^-53, inside the margins). Overflow to infinity only widens. With a zero or an
+  // infinite inv (a direction component near 0), or an offset beyond the float range, the test runs
+  // slab() and widen() themselves (slabs()).
+  __attribute__((target(PIERCE_AVX2_TARGET))) void node_offsets(const TraversalRay<float>& r, double scene_max_abs) {
+    constexpr double u = 0x1p-24, k = 0x1p-20, tiny = 0x1p-140;
+    // A box's coordinates are its triangles' float corners: each within half an ulp of the scene's.
+    const double reach = scene_max_abs * (1.0 + 0x1p-23);
+    const __m128 inv_f = _mm_setr_ps(r.inv[0], r.inv[1], r.inv[2], 1.0f);
+    const __m256d abs_mask = _mm256_set1_pd(-0.0);
+    const __m256d o = _mm256_cvtps_pd(_mm_setr_ps(r.org[0], r.org[1], r.org[2], 0.0f));
+    const __m256d v = _mm256_cvtps_pd(inv_f);
+    const __m256d y = _mm256_mul_pd(_mm256_add_pd(_mm256_set1_pd(reach), _mm256_andnot_pd(abs_mask, o)),
+                                    _mm256_andnot_pd(abs_mask, v));
+    const __m256d minus_ov = _mm256_xor_pd(_mm256_mul_pd(o, v), abs_mask);
+    const __m256d e = _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(3 * u), y), _mm256_set1_pd(tiny));
+    const __m256d f = _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(k + 5 * u), y),
+                                    _mm256_set1_pd(double(r.pad) * (1.0 + 0x1p-20) + tiny));
+    alignas(16) float nc[4], fc[4];
+    _mm_store_ps(nc, _mm256_cvtpd_ps(_mm256_sub_pd(minus_ov, e)));
+    _mm_store_ps(fc, _mm256_cvtpd_ps(_mm256_add_pd(minus_ov, f)));
+    for (int a = 0; a < 3; ++a) near_c[a] = _mm256_set1_ps(nc[a]), far_c[a] = _mm256_set1_ps(fc[a]);
+    const __m128 abs_f = _mm_set1_ps(-0.0f), inf_f = _mm_set1_ps(std::numeric_limits<float>::infinity());
+    const __m128 finite = _mm_and_ps(_mm_cmplt_ps(_mm_andnot_ps(abs_f, inv_f), inf_f),
+                                     _mm_and_ps(_mm_cmplt_ps(_mm_andnot_ps(abs_f, _mm_load_ps(nc)), inf_f),
+                                                _mm_cmplt_ps(_mm_andnot_ps(abs_f, _mm_load_ps(fc)), inf_f)));
+    fused = !any_zero && (_mm_movemask_ps(finite) & 7) == 7;
   }
 
   // Corner c's coordinates along the axis at `offset` (kx_offset, ky_offset or kz_offset), eight lanes.
@@ -245,25 +294,28 @@ struct SimdRay {
     return reinterpret_cast<const float*>(reinterpret_cast<const char*>(&n) + offset);
   }
 
-  // Entry and exit distances of the eight boxes (slab(): max/min with its NaN behaviour); `outside`
-  // gets the lanes a parallel axis misses.
-  __attribute__((target("avx2"))) void slabs(const WideNode<float>& n, __m256& tn, __m256& tf, __m256& outside) const {
-    if (!any_zero) [[likely]] {
-      // The loop below, unrolled for a ray with no parallel axis.
-      tn = _mm256_set1_ps(-std::numeric_limits<float>::infinity());
-      tf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
-      outside = _mm256_setzero_ps();
-      for (int a = 0; a < 3; ++a) {
-        const __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(plane(n, near_offset[a])), org[a]), inv[a]);
-        const __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(plane(n, far_offset[a])), org[a]), inv[a]);
-        tn = _mm256_max_ps(t0, tn);
-        tf = _mm256_min_ps(t1, tf);
-      }
-      return;
+  // Entry distances and widened exit distances of the eight boxes where `fused` (node_offsets()):
+  // one fused multiply-add per plane. Never NaN: every offset and inv is finite and inv non-zero,
+  // and a plane is finite or, in an empty slot, infinite. An empty slot's planes are +inf (lo) and
+  // -inf (hi) (set_wide_boxes), so its entry distance is +inf and its exit distance -inf whatever
+  // the direction: it fails in_range() without the node's valid bits.
+  __attribute__((target(PIERCE_AVX2_TARGET))) void fused_slabs(const WideNode<float>& n, __m256& tn,
+                                                               __m256& wf) const {
+    tn = _mm256_fmadd_ps(_mm256_load_ps(plane(n, near_offset[0])), inv[0], near_c[0]);
+    wf = _mm256_fmadd_ps(_mm256_load_ps(plane(n, far_offset[0])), inv[0], far_c[0]);
+    for (int a = 1; a < 3; ++a) {
+      tn = _mm256_max_ps(_mm256_fmadd_ps(_mm256_load_ps(plane(n, near_offset[a])), inv[a], near_c[a]), tn);
+      wf = _mm256_min_ps(_mm256_fmadd_ps(_mm256_load_ps(plane(n, far_offset[a])), inv[a], far_c[a]), wf);
     }
-    tn = _mm256_set1_ps(-std::numeric_limits<float>::infinity());
-    tf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
+  }
+
+  // The same without `fused`: slab() and widen() themselves (max/min with slab()'s NaN behaviour);
+  // `outside` gets the lanes a parallel axis misses.
+  __attribute__((target(PIERCE_AVX2_TARGET))) void slabs(const WideNode<float>& n, __m256& tn, __m256& wf,
+                                                         __m256& outside) const {
     outside = _mm256_setzero_ps();
+    tn = _mm256_set1_ps(-std::numeric_limits<float>::infinity());
+    __m256 tf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
     for (int a = 0; a < 3; ++a) {
       if (zero[a]) {  // parallel to the slabs: inside or a miss
         const __m256 L = _mm256_load_ps(n.lo[a]), H = _mm256_load_ps(n.hi[a]);
@@ -276,11 +328,12 @@ struct SimdRay {
       tn = _mm256_max_ps(t0, tn);  // t0 > tn ? t0 : tn, as slab()
       tf = _mm256_min_ps(t1, tf);  // t1 < tf ? t1 : tf
     }
+    wf = widen(tf, pad);
   }
 
   // The edge functions U, V, W of triangle.h for the eight lanes, in the same operations, and the
   // corners' kz coordinates relative to the origin.
-  __attribute__((target("avx2"))) void edges(const TriBlock<float>& b, __m256 e[3], __m256 z[3]) const {
+  __attribute__((target(PIERCE_AVX2_TARGET))) void edges(const TriBlock<float>& b, __m256 e[3], __m256 z[3]) const {
     __m256 px[3], py[3];
     for (int c = 0; c < 3; ++c) {
       z[c] = _mm256_sub_ps(_mm256_load_ps(axis(b, c, kz_offset)), okz);
@@ -297,7 +350,7 @@ struct SimdRay {
   // and std::max's operand order, so signed zeros come out alike): all bits set in the lanes that
   // hit within [lo, hi]. `overflow` gets the lanes whose t overflowed (the scalar test's other
   // formula).
-  __attribute__((target("avx2"))) __m256 finish(const TriBlock<float>& b, const __m256 e[3], const __m256 z[3],
+  __attribute__((target(PIERCE_AVX2_TARGET))) __m256 finish(const TriBlock<float>& b, const __m256 e[3], const __m256 z[3],
                                                 float lo, float hi, BlockHits<float>& out, __m256& overflow) const {
     const __m256 zero_v = _mm256_setzero_ps();
     const __m256 inf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
@@ -345,7 +398,7 @@ struct SimdRay {
   // The block's test (ScalarOps::tri_test, with lanes finished here). `inside`: lanes with edge
   // functions non-zero, finite and of one sign; `exact`: lanes with a zero or non-finite one
   // (decided by the exact scalar test).
-  __attribute__((target("avx2"))) LeafLanes tri_test(const TriBlock<float>& b, float lo, float hi,
+  __attribute__((target(PIERCE_AVX2_TARGET))) LeafLanes tri_test(const TriBlock<float>& b, float lo, float hi,
                                                      BlockHits<float>& out) const {
     __m256 e[3], z[3];
     edges(b, e, z);
@@ -372,21 +425,26 @@ struct SimdRay {
 
 struct Avx2Ops {
   SimdRay ray;
-  __attribute__((target("avx2"))) explicit Avx2Ops(const TraversalRay<float>& r) : ray(r) {}
+  __attribute__((target(PIERCE_AVX2_TARGET))) Avx2Ops(const TraversalRay<float>& r, double scene_max_abs)
+      : ray(r, scene_max_abs) {}
 
   // Entry distances by slot; the result has all bits set in the lanes of the children that pass.
-  __attribute__((target("avx2"))) __m256 slot_hits(const WideNode<float>& n, std::uint32_t order, float lo, float hi,
+  __attribute__((target(PIERCE_AVX2_TARGET))) __m256 slot_hits(const WideNode<float>& n, std::uint32_t order, float lo, float hi,
                                                    __m256& tn) const {
-    __m256 tf, outside;
-    ray.slabs(n, tn, tf, outside);
-    const __m256 wf = widen(tf, ray.pad);
+    __m256 wf;
+    if (ray.fused) [[likely]] {
+      ray.fused_slabs(n, tn, wf);
+      return in_range(tn, wf, lo, hi);  // an empty slot fails it (fused_slabs())
+    }
+    __m256 outside;
+    ray.slabs(n, tn, wf, outside);
     const __m256 ok = in_range(tn, wf, lo, hi);
     const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
     const __m256i valid = _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(order >> 24)), bits), bits);
     return _mm256_and_ps(_mm256_andnot_ps(outside, ok), _mm256_castsi256_ps(valid));
   }
 
-  __attribute__((target("avx2"))) std::uint32_t node_hits(const WideNode<float>& n, float lo, float hi, float* tn_out,
+  __attribute__((target(PIERCE_AVX2_TARGET))) std::uint32_t node_hits(const WideNode<float>& n, float lo, float hi, float* tn_out,
                                                           NodeRef* child_out) const {
     const std::uint32_t order = n.order[ray.oct];
     __m256 tn;
@@ -400,7 +458,7 @@ struct Avx2Ops {
 
   // ScalarOps::push_hits: two left-packed stores of four entries each.
   template <bool kRanked = true>
-  __attribute__((target("avx2"))) std::uint32_t push_hits(const WideNode<float>& n, float lo, float hi,
+  __attribute__((target(PIERCE_AVX2_TARGET))) std::uint32_t push_hits(const WideNode<float>& n, float lo, float hi,
                                                           NodeEntry<float>* top, NodeEntry<float>& nearest,
                                                           std::uint32_t& others) const {
     const std::uint32_t order = n.order[ray.oct];
@@ -438,7 +496,7 @@ struct Avx2Ops {
     return n0 + std::uint32_t(__builtin_popcount(m1));
   }
 
-  __attribute__((target("avx2"))) LeafLanes tri_test(const TriBlock<float>& b, float lo, float hi,
+  __attribute__((target(PIERCE_AVX2_TARGET))) LeafLanes tri_test(const TriBlock<float>& b, float lo, float hi,
                                                      BlockHits<float>& out) const {
     return ray.tri_test(b, lo, hi, out);
   }
@@ -446,14 +504,19 @@ struct Avx2Ops {
 
 struct Avx512Ops {
   SimdRay ray;
-  __attribute__((target(PIERCE_AVX512_TARGET))) explicit Avx512Ops(const TraversalRay<float>& r) : ray(r) {}
+  __attribute__((target(PIERCE_AVX512_TARGET))) Avx512Ops(const TraversalRay<float>& r, double scene_max_abs)
+      : ray(r, scene_max_abs) {}
 
   __attribute__((target(PIERCE_AVX512_TARGET))) __mmask8 slot_hits(const WideNode<float>& n, std::uint32_t order,
                                                                    float lo, float hi, __m256& tn) const {
-    __m256 tf, outside;
-    ray.slabs(n, tn, tf, outside);
+    __m256 wf;
+    if (ray.fused) [[likely]] {
+      ray.fused_slabs(n, tn, wf);
+      return in_range(__mmask8(0xff), tn, wf, lo, hi);  // an empty slot fails it (fused_slabs())
+    }
+    __m256 outside;
+    ray.slabs(n, tn, wf, outside);
     const __mmask8 inside = __mmask8(order >> 24) & ~_mm256_movepi32_mask(_mm256_castps_si256(outside));
-    const __m256 wf = widen(tf, ray.pad);
     return in_range(inside, tn, wf, lo, hi);
   }
 
