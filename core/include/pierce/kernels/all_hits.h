@@ -21,7 +21,7 @@ class AllHitsKernel : public WideKernel<T, C> {
     hits_.clear();
     pos_ = 0;
     this->seed_root(this->ray_.tmin, this->ray_.tmax);
-    Gather p{this->ray_, hits_};
+    GatherInRange<T> p{this->ray_, hits_};
     this->run(p);
     std::sort(hits_.begin(), hits_.end(), this->order_);
   }
@@ -33,17 +33,6 @@ class AllHitsKernel : public WideKernel<T, C> {
   }
 
  private:
-  struct Gather : TraversalPolicy<T> {
-    static constexpr bool kAnyOrder = true;  // every hit in [tmin, tmax], sorted afterwards
-    const TraversalRay<T>& r;
-    std::vector<Hit>& hits;
-    Gather(const TraversalRay<T>& ray, std::vector<Hit>& out) : r(ray), hits(out) {}
-    T lo() const { return r.tmin; }
-    T hi() const { return r.tmax; }
-    T cull_bound() const { return r.tmax; }
-    void hit(const TriBlock<T>& b, int l, const TriangleHit<T>& h) { hits.push_back(make_hit(b, l, h)); }
-  };
-
   std::vector<Hit> hits_;
   std::size_t pos_ = 0;
 };

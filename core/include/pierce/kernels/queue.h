@@ -15,14 +15,16 @@
 // the heap; the nearest hit held is returned only while it is strictly nearer than the nearest
 // node on the heap (a node entered at exactly its t may hold a hit that ranks first).
 //
-// The first pass may also run breadth first (as `filter` does, FifoCursor). Near to far pays where
-// the bound closes early (N hits held), since the nodes beyond it are then deferred; where it
-// closes late, or never (a ray with fewer hits than N), nearly every node in range is traversed
-// whatever the order, and breadth first hides the latency of each node behind the others. Which
-// rays are which is not known in advance, so by default (QueueFirstPass::adaptive) the kernel
-// measures what culling saved on its recent depth-first first passes, as nodes deferred per node
-// traversed, and runs breadth first while that is small. The hits are the same either way: the
-// order of the visit decides no hit, and culling at the bound is checked when a node is taken.
+// The first pass may instead be `filter`'s (GatherInRange: breadth first, FifoCursor, every hit in
+// range, sorted once, nothing deferred). Near to far pays where the bound closes early (N hits
+// held), since the nodes beyond it are then deferred; where it closes late, or never (a ray with
+// fewer hits than N), nearly every node in range is traversed whatever the order, and breadth
+// first hides the latency of each node behind the others. Which rays are which is not known in
+// advance, so by default (QueueFirstPass::adaptive) the kernel measures what culling saved on its
+// recent depth-first first passes, as nodes deferred per node traversed, and gathers while that is
+// small. (Until the twentieth session the breadth-first pass kept a bound too; breadth first it
+// closes late, and keeping it cost `queue` 3-8 % against `filter` where it never closes.) The hits
+// are the same either way: after a gathering pass every hit is held and no node is deferred.
 #include <algorithm>
 #include <cstdint>
 #include <vector>
@@ -58,20 +60,20 @@ class QueueKernel : public WideKernel<T, C> {
     const bool breadth = breadth_first();
     ++rays_;
     if (breadth) {
-      // Hits come in any order: only the N nearest are kept in order (see hold()).
-      sorted_ = false;
-      DescendAnyOrder p{*this};
+      // `filter`'s pass: every hit in range, sorted once, nothing deferred. It runs where culling
+      // saves little, and breadth first the bound would close late anyway.
+      GatherInRange<T> p{this->ray_, hits_};
       this->run(p);
-      sort_held();
-      sorted_ = true;
+      std::sort(hits_.begin(), hits_.end(), this->order_);
+      update_bound();
       return;
     }
     steps_ = 0;
     Descend p{*this};
     this->run(p);
     // What culling saved on this ray: subtrees deferred per node traversed (none where the bound
-    // never closed). Measured on depth-first passes only, since a breadth-first pass closes its
-    // bound later and would defer less. 1/32: the average follows the last few dozen of them.
+    // never closed). Measured on depth-first passes only, since a gathering pass defers nothing.
+    // 1/32: the average follows the last few dozen of them.
     const float deferred = float(deferred_.size()) / float(steps_ > 0 ? steps_ : 1);
     deferred_per_step_ += (deferred - deferred_per_step_) * (1.0f / 32.0f);
     // While the probes say "breadth first" by a wide margin, probe half as often (down to every
@@ -121,53 +123,17 @@ class QueueKernel : public WideKernel<T, C> {
     void culled(NodeEntry<T> node) { k.deferred_.push(node); }
     void hit(const TriBlock<T>& b, int l, const TriangleHit<T>& h) { k.hold(make_hit(b, l, h)); }
   };
-  // The same, breadth first (FifoCursor).
-  struct DescendAnyOrder : Descend {
-    static constexpr bool kAnyOrder = true;
-    using Descend::Descend;
-    void node(NodeRef /*ref*/, T /*tn*/) {}  // nothing reads the count of a breadth-first pass
-  };
-
-  void sort_held() {
-    std::sort(hits_.begin() + std::ptrdiff_t(pos_), hits_.end(), this->order_);
-    update_bound();
-  }
-  // h into hits_[pos_, last], which is in order but for slot `last` (free): the slots before it
-  // that rank after h move up one.
-  void insert_in_order(std::size_t last, const Hit& h) {
-    std::size_t i = last;
+  // Inserted in order; the depth-first pass meets hits roughly near to far, so from the back:
+  // the held hits that rank after h move up one.
+  void hold(const Hit& h) {
+    hits_.push_back(h);
+    std::size_t i = hits_.size() - 1;
     while (i > pos_ && this->order_.less(h, hits_[i - 1])) {
       hits_[i] = hits_[i - 1];
       --i;
     }
     hits_[i] = h;
     update_bound();
-  }
-
-  // Inserted in order; the depth-first pass meets hits roughly near to far, so from the back.
-  // Breadth first, hits come in any order: appended unsorted until N are held, then sorted; after
-  // that only the N nearest (which set the bound) are kept in order, and a hit that ranks before
-  // the N-th takes its place there while the N-th moves to the back, unsorted. Each hit costs at
-  // most N moves, not as many as are held (a ray with thousands of hits at a large N), and the
-  // bound is the N-th nearest held at every step, as in the depth-first pass. The pass sorts the
-  // rest once when it ends.
-  void hold(const Hit& h) {
-    if (!sorted_) {
-      hits_.push_back(h);
-      const std::size_t held = hits_.size() - pos_;
-      if (held < depth_) return;
-      if (held == depth_) {
-        sort_held();
-        return;
-      }
-      const std::size_t nth = pos_ + depth_ - 1;
-      if (!this->order_.less(h, hits_[nth])) return;
-      hits_.back() = hits_[nth];
-      insert_in_order(nth, h);
-      return;
-    }
-    hits_.push_back(h);
-    insert_in_order(hits_.size() - 1, h);
   }
   void update_bound() {
     bound_ = hits_.size() - pos_ >= depth_ ? T(hits_[pos_ + depth_ - 1].t) : this->ray_.tmax;
@@ -179,7 +145,6 @@ class QueueKernel : public WideKernel<T, C> {
   T bound_ = 0;            // its t (tmax while fewer are held)
   NodeHeap<T> deferred_;   // nodes entered beyond the bound, nearest first
   QueueFirstPass first_pass_;
-  bool sorted_ = true;  // hits_ from pos_ on are in hit order (in a breadth-first pass, false: only the first N)
   // Between the bench scenes' figures, read from a temporary instrumented build (no bench prints
   // them; sixteenth session, docs/BENCHMARKS.md): hairball at N = 15 defers 0.03 per node traversed
   // and ran faster breadth first in pierce_bench_kernels, at N = 5 0.17 and ran faster near to

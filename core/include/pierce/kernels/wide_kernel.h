@@ -4,6 +4,7 @@
 // policy, and how a traversal is seeded and run. The kernels differ only in their traversal policy
 // and in what they keep between next() calls.
 #include <algorithm>
+#include <vector>
 
 #include "pierce/hit.h"
 #include "pierce/traverse.h"
@@ -24,6 +25,20 @@ struct ResumeAfter {
   T lower(T tmin) const {
     return have ? std::max(tmin, T(last.t)) : tmin;
   }
+};
+
+// Every hit in the ray's [tmin, tmax], in the order the traversal meets them (breadth first: the
+// order does not matter, the caller sorts): `filter`'s traversal, and `queue`'s breadth-first pass.
+template <typename T>
+struct GatherInRange : TraversalPolicy<T> {
+  static constexpr bool kAnyOrder = true;
+  const TraversalRay<T>& r;
+  std::vector<Hit>& hits;
+  GatherInRange(const TraversalRay<T>& ray, std::vector<Hit>& out) : r(ray), hits(out) {}
+  T lo() const { return r.tmin; }
+  T hi() const { return r.tmax; }
+  T cull_bound() const { return r.tmax; }
+  void hit(const TriBlock<T>& b, int l, const TriangleHit<T>& h) { hits.push_back(make_hit(b, l, h)); }
 };
 
 // C: the counter policy (counters.h).
