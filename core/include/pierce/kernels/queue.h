@@ -65,7 +65,6 @@ class QueueKernel : public WideKernel<T, C> {
       GatherInRange<T> p{this->ray_, hits_};
       this->run(p);
       std::sort(hits_.begin(), hits_.end(), this->order_);
-      update_bound();
       return;
     }
     steps_ = 0;
@@ -95,6 +94,13 @@ class QueueKernel : public WideKernel<T, C> {
   }
 
   bool next(Hit& out) {
+    // Nothing deferred (always after a gathering pass): every hit left is held, in order, and no
+    // pass will run again, so the bound no longer matters.
+    if (deferred_.empty()) {
+      if (pos_ >= hits_.size()) return false;
+      out = hits_[pos_++];
+      return true;
+    }
     for (;;) {
       if (pos_ < hits_.size() && (deferred_.empty() || hits_[pos_].t < double(deferred_.next_tn()))) {
         out = hits_[pos_++];
