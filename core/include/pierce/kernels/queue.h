@@ -23,8 +23,9 @@
 // advance, so by default (QueueFirstPass::adaptive) the kernel measures what culling saved on its
 // recent depth-first first passes, as nodes deferred per node traversed, and gathers while that is
 // small. (Until the twentieth session the breadth-first pass kept a bound too; breadth first it
-// closes late, and keeping it cost `queue` 3-8 % against `filter` where it never closes.) The hits
-// are the same either way: after a gathering pass every hit is held and no node is deferred.
+// closes late, and where it never closes `queue` trailed `filter` for the same work:
+// docs/BENCHMARKS.md, twentieth session.) The hits are the same either way: after a gathering
+// pass every hit is held and no node is deferred.
 #include <algorithm>
 #include <cstdint>
 #include <vector>
