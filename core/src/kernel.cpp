@@ -164,6 +164,10 @@ void HitIterator::collect(const Ray& ray, std::size_t max_hits, std::vector<Hit>
   // One dispatch per ray, with the kernel's begin() and next() inlined into one loop.
   std::visit(
       [&](auto& k) {
+        if constexpr (requires { k.collect(ray, max_hits, out); }) {
+          k.collect(ray, max_hits, out);
+          return;
+        }
         k.begin(ray, max_hits);
         Hit h;
         std::size_t n = 0;

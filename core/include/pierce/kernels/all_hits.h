@@ -17,13 +17,19 @@ class AllHitsKernel : public WideKernel<T, C> {
   explicit AllHitsKernel(const WideBvh<T>& bvh, HitOrder order = {}) : Base(bvh, order) {}
 
   void begin(const Ray& ray, std::size_t /*max_hits*/ = 0) {
-    this->prepare(ray);
     hits_.clear();
     pos_ = 0;
-    this->seed_root(this->ray_.tmin, this->ray_.tmax);
-    GatherInRange<T> p{this->ray_, hits_};
-    this->run(p);
-    std::sort(hits_.begin(), hits_.end(), this->order_);
+    gather(ray, hits_);
+  }
+
+  // begin(ray), then every next() hit (up to max_hits, 0 = all) appended to `out`: gathered and
+  // sorted there, not copied over from the kernel's own list.
+  void collect(const Ray& ray, std::size_t max_hits, std::vector<Hit>& out) {
+    hits_.clear();
+    pos_ = 0;
+    const std::size_t first = out.size();
+    gather(ray, out);
+    if (max_hits != 0 && out.size() - first > max_hits) out.resize(first + max_hits);
   }
 
   bool next(Hit& out) {
@@ -33,6 +39,16 @@ class AllHitsKernel : public WideKernel<T, C> {
   }
 
  private:
+  // Every hit of the ray in [tmin, tmax], appended to `out` and sorted there.
+  void gather(const Ray& ray, std::vector<Hit>& out) {
+    this->prepare(ray);
+    const std::size_t first = out.size();
+    this->seed_root(this->ray_.tmin, this->ray_.tmax);
+    GatherInRange<T> p{this->ray_, out};
+    this->run(p);
+    std::sort(out.begin() + std::ptrdiff_t(first), out.end(), this->order_);
+  }
+
   std::vector<Hit> hits_;
   std::size_t pos_ = 0;
 };
