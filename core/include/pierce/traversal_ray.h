@@ -68,17 +68,25 @@ struct TraversalRay {
     tr.sx = d[tr.kx] / dz;
     tr.sy = d[tr.ky] / dz;
     tr.sz = inv[tr.kz];  // 1 / dz, the same division (dz, the largest component, is non-zero on a valid ray)
-    // Round the segment inwards: hit distances are values of T, so t >= tmin holds for the
-    // caller's double tmin exactly when it holds for the next T up (and likewise for tmax).
-    tr.tmin = T(r.tmin);
-    tr.tmax = T(r.tmax);
-    if (double(tr.tmin) < r.tmin) tr.tmin = std::nextafter(tr.tmin, std::numeric_limits<T>::infinity());
-    if (double(tr.tmax) > r.tmax) tr.tmax = std::nextafter(tr.tmax, -std::numeric_limits<T>::infinity());
-    const double dmax = std::max({std::abs(r.dir.x), std::abs(r.dir.y), std::abs(r.dir.z)});
-    // 2^-20 of the t-span of the scene as seen from this origin: far above the rounding of
-    // the triangle test's projection, far below anything that costs traversal work.
-    tr.pad = T((max_abs(r.org) + scene_max_abs) / (dmax > 0 ? dmax : 1.0) * 0x1p-20);
+    tr.set_range(r);
+    tr.pad = pad_for(r, scene_max_abs);
     tr.ok = !(tr.zero[0] & tr.zero[1] & tr.zero[2]) & finite;
+  }
+
+  // tmin and tmax of `r`, rounded inwards: hit distances are values of T, so t >= tmin holds for
+  // the caller's double tmin exactly when it holds for the next T up (and likewise for tmax).
+  void set_range(const Ray& r) {
+    tmin = T(r.tmin);
+    tmax = T(r.tmax);
+    if (double(tmin) < r.tmin) tmin = std::nextafter(tmin, std::numeric_limits<T>::infinity());
+    if (double(tmax) > r.tmax) tmax = std::nextafter(tmax, -std::numeric_limits<T>::infinity());
+  }
+
+  // 2^-20 of the t-span of the scene as seen from r's origin: far above the rounding of the
+  // triangle test's projection, far below anything that costs traversal work.
+  static T pad_for(const Ray& r, double scene_max_abs) {
+    const double dmax = std::max({std::abs(r.dir.x), std::abs(r.dir.y), std::abs(r.dir.z)});
+    return T((max_abs(r.org) + scene_max_abs) / (dmax > 0 ? dmax : 1.0) * 0x1p-20);
   }
 
   bool valid() const { return ok; }

@@ -329,8 +329,8 @@ HeapCursor<T> cursor_for(NodeHeap<T>& h) {
 // The traversal loop with the node and leaf tests of `Ops`. Returns true when every pending node
 // is done, false when the policy suspended it (the next node is back on `container`).
 template <class Ops, typename T, class Container, class Policy, class C>
-inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Container& container, Policy& p, C& c) {
-  const Ops ops(r, bvh.scene_max_abs);
+inline bool traverse_with(const Ops& ops, const WideBvh<T>& bvh, const TraversalRay<T>& r, Container& container,
+                          Policy& p, C& c) {
   const WideNode<T>* const nodes = bvh.nodes.data();
   const TriBlock<T>* const blocks = bvh.blocks.data();
   auto pending = cursor_for<Policy>(container);
@@ -433,17 +433,42 @@ inline bool traverse_with(const WideBvh<T>& bvh, const TraversalRay<T>& r, Conta
 
 namespace detail {
 
+// The SimdRay a SIMD level's traversal reads: `prepared` if the caller made it (WideKernel::prepare,
+// once per ray), else `made` from r.
+__attribute__((target(PIERCE_AVX2_TARGET))) inline const simd::SimdRay& simd_ray_for(const TraversalRay<float>& r,
+                                                                                  double scene_max_abs,
+                                                                                  const simd::SimdRay* prepared,
+                                                                                  simd::SimdRay& made) {
+  if (prepared != nullptr) return *prepared;
+  made.assign(r, scene_max_abs);
+  return made;
+}
+
 template <typename T, class Pending, class Policy, class C>
 __attribute__((target(PIERCE_AVX2_TARGET), flatten)) bool traverse_avx2(const WideBvh<T>& bvh, const TraversalRay<T>& r,
-                                                            Pending& pending, Policy& p, C& c) {
-  return traverse_with<simd::Avx2Ops>(bvh, r, pending, p, c);
+                                                                        const simd::SimdRay* prepared,
+                                                                        Pending& pending, Policy& p, C& c) {
+  simd::SimdRay made;
+  return traverse_with(simd::Avx2Ops(simd_ray_for(r, bvh.scene_max_abs, prepared, made)), bvh, r, pending, p, c);
 }
 
 template <typename T, class Pending, class Policy, class C>
 __attribute__((target(PIERCE_AVX512_TARGET), flatten)) bool traverse_avx512(const WideBvh<T>& bvh,
                                                                             const TraversalRay<T>& r,
+                                                                            const simd::SimdRay* prepared,
                                                                             Pending& pending, Policy& p, C& c) {
-  return traverse_with<simd::Avx512Ops>(bvh, r, pending, p, c);
+  simd::SimdRay made;
+  return traverse_with(simd::Avx512Ops(simd_ray_for(r, bvh.scene_max_abs, prepared, made)), bvh, r, pending, p, c);
+}
+
+template <typename T, class Pending, class Policy, class C>
+inline bool traverse_at(SimdLevel level, const WideBvh<T>& bvh, const TraversalRay<T>& r,
+                        const simd::SimdRay* prepared, Pending& pending, Policy& p, C& c) {
+  if constexpr (std::is_same_v<T, float>) {
+    if (level == SimdLevel::avx512) return traverse_avx512(bvh, r, prepared, pending, p, c);
+    if (level == SimdLevel::avx2) return traverse_avx2(bvh, r, prepared, pending, p, c);
+  }
+  return traverse_with(simd::ScalarOps<T>(r, bvh.scene_max_abs), bvh, r, pending, p, c);
 }
 
 }  // namespace detail
@@ -452,11 +477,7 @@ __attribute__((target(PIERCE_AVX512_TARGET), flatten)) bool traverse_avx512(cons
 template <typename T, class Pending, class Policy, class C>
 inline bool traverse(SimdLevel level, const WideBvh<T>& bvh, const TraversalRay<T>& r, Pending& pending, Policy& p,
                      C& c) {
-  if constexpr (std::is_same_v<T, float>) {
-    if (level == SimdLevel::avx512) return detail::traverse_avx512(bvh, r, pending, p, c);
-    if (level == SimdLevel::avx2) return detail::traverse_avx2(bvh, r, pending, p, c);
-  }
-  return traverse_with<simd::ScalarOps<T>>(bvh, r, pending, p, c);
+  return detail::traverse_at(level, bvh, r, nullptr, pending, p, c);
 }
 
 // Everything HitOrder looks at, without the rest of the record.

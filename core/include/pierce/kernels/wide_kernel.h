@@ -4,6 +4,7 @@
 // policy, and how a traversal is seeded and run. The kernels differ only in their traversal policy
 // and in what they keep between next() calls.
 #include <algorithm>
+#include <type_traits>
 #include <vector>
 
 #include "pierce/hit.h"
@@ -52,7 +53,17 @@ class WideKernel {
     pending_.reserve(bvh.stack_capacity());
   }
 
-  void prepare(const Ray& ray) { ray_.assign(ray, bvh_->scene_max_abs); }
+  // The ray's TraversalRay and, at a SIMD level, its SimdRay: once per ray, however many
+  // traversals it takes (restart's, queue's and buffered's later passes reuse them).
+  void prepare(const Ray& ray) {
+    if constexpr (kHasSimdRay) {
+      if (simd_ != SimdLevel::scalar) {
+        simd::prepare_simd_ray(ray, bvh_->scene_max_abs, ray_, simd_ray_);
+        return;
+      }
+    }
+    ray_.assign(ray, bvh_->scene_max_abs);
+  }
   bool traceable() const { return !bvh_->empty() && ray_.valid(); }
   // A new traversal of [lo, hi] from the root.
   void seed_root(T lo, T hi) {
@@ -62,13 +73,18 @@ class WideKernel {
   // Traverses until every pending node is done (true) or the policy suspends (false).
   template <class Policy>
   bool run(Policy& p) {
-    return traverse(simd_, *bvh_, ray_, pending_, p, counters);
+    const simd::SimdRay* prepared = nullptr;
+    if constexpr (kHasSimdRay) prepared = simd_ != SimdLevel::scalar ? &simd_ray_ : nullptr;
+    return detail::traverse_at(simd_, *bvh_, ray_, prepared, pending_, p, counters);
   }
 
   const WideBvh<T>* bvh_;
   HitOrder order_;
   SimdLevel simd_;
   TraversalRay<T> ray_;
+  static constexpr bool kHasSimdRay = std::is_same_v<T, float>;  // the SIMD levels run on float
+  struct NoSimdRay {};
+  [[no_unique_address]] std::conditional_t<kHasSimdRay, simd::SimdRay, NoSimdRay> simd_ray_;
   NodeStack<T> pending_;
 };
 

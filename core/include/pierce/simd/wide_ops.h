@@ -219,30 +219,56 @@ struct SimdRay {
   // offsets serve all three corners, which keeps the leaf test's address registers few.
   std::uint32_t kx_offset, ky_offset, kz_offset;
 
+  SimdRay() = default;  // filled by assign() or prepare_simd_ray()
   __attribute__((target(PIERCE_AVX2_TARGET))) SimdRay(const TraversalRay<float>& r, double scene_max_abs) {
+    assign(r, scene_max_abs);
+  }
+
+  // The constructor's work, in place.
+  __attribute__((target(PIERCE_AVX2_TARGET))) void assign(const TraversalRay<float>& r, double scene_max_abs) {
+    fill(_mm_setr_ps(r.org[0], r.org[1], r.org[2], 0.0f), _mm_setr_ps(r.inv[0], r.inv[1], r.inv[2], 1.0f),
+         int(r.zero[0]) | int(r.zero[1]) << 1 | int(r.zero[2]) << 2, r.kx, r.ky, r.kz, _mm_setr_ps(r.sx, r.sy, 0, 0),
+         r.sz, r.pad, octant(r), scene_max_abs);
+  }
+
+  // Everything from the ray's values in registers (lanes 0-2: axes x, y, z): org and inv as in
+  // TraversalRay, bit a of zero_bits its zero[a], sxy = (sx, sy, ...), and its kx, ky, kz, sz,
+  // pad and octant. assign() passes a TraversalRay's fields; prepare_simd_ray() the values it
+  // computed them from.
+  __attribute__((target(PIERCE_AVX2_TARGET))) void fill(__m128 o, __m128 v, int zero_bits, int kx, int ky, int kz,
+                                                         __m128 sxy, float sz_, float pad_, int octant_,
+                                                         double scene_max_abs) {
+    const __m256 o8 = _mm256_castps128_ps256(o), v8 = _mm256_castps128_ps256(v);
+    // slab(): t0 from lo, t1 from hi, swapped where inv < 0 (arithmetic, not a branch: random
+    // directions would mispredict it).
+    const __m128 negative = _mm_cmplt_ps(v, _mm_setzero_ps());
+    const __m256 negative8 = _mm256_castps128_ps256(negative);
+    const auto swapped_bits = std::uint32_t(_mm_movemask_ps(negative));
     for (int a = 0; a < 3; ++a) {
-      org[a] = _mm256_set1_ps(r.org[a]);
-      inv[a] = _mm256_set1_ps(r.inv[a]);
-      zero[a] = r.zero[a];
+      const __m256i lane = _mm256_set1_epi32(a);
+      org[a] = _mm256_permutevar8x32_ps(o8, lane);
+      inv[a] = _mm256_permutevar8x32_ps(v8, lane);
+      swap_mask[a] = _mm256_permutevar8x32_ps(negative8, lane);
+      zero[a] = (zero_bits >> a & 1) != 0;
       const auto lo = std::uint32_t(offsetof(WideNode<float>, lo) + sizeof(float) * kWideArity * std::size_t(a));
       const auto hi = std::uint32_t(offsetof(WideNode<float>, hi) + sizeof(float) * kWideArity * std::size_t(a));
-      // slab(): t0 from lo, t1 from hi, swapped where inv < 0 (arithmetic, not a branch: random
-      // directions would mispredict it).
-      const std::uint32_t swapped = r.inv[a] < 0.0f;
-      swap_mask[a] = _mm256_castsi256_ps(_mm256_set1_epi32(-int(swapped)));
+      const std::uint32_t swapped = swapped_bits >> a & 1;
       near_offset[a] = lo + swapped * (hi - lo);
       far_offset[a] = hi - swapped * (hi - lo);
     }
-    any_zero = zero[0] || zero[1] || zero[2];
-    pad = _mm256_set1_ps(r.pad);
+    any_zero = (zero_bits & 7) != 0;
+    pad = _mm256_set1_ps(pad_);
     constexpr auto kAxisBytes = std::uint32_t(sizeof(float) * kBlockLanes);
-    kx_offset = std::uint32_t(r.kx) * kAxisBytes, ky_offset = std::uint32_t(r.ky) * kAxisBytes;
-    kz_offset = std::uint32_t(r.kz) * kAxisBytes;
-    okx = _mm256_set1_ps(r.org[r.kx]), oky = _mm256_set1_ps(r.org[r.ky]), okz = _mm256_set1_ps(r.org[r.kz]);
-    sx = _mm256_set1_ps(r.sx), sy = _mm256_set1_ps(r.sy);
-    sz = r.sz;
-    oct = octant(r);
-    node_offsets(r, scene_max_abs);
+    kx_offset = std::uint32_t(kx) * kAxisBytes, ky_offset = std::uint32_t(ky) * kAxisBytes;
+    kz_offset = std::uint32_t(kz) * kAxisBytes;
+    okx = _mm256_permutevar8x32_ps(o8, _mm256_set1_epi32(kx));
+    oky = _mm256_permutevar8x32_ps(o8, _mm256_set1_epi32(ky));
+    okz = _mm256_permutevar8x32_ps(o8, _mm256_set1_epi32(kz));
+    sx = _mm256_broadcastss_ps(sxy);
+    sy = _mm256_permutevar8x32_ps(_mm256_castps128_ps256(sxy), _mm256_set1_epi32(1));
+    sz = sz_;
+    oct = octant_;
+    node_offsets(o, v, pad_, scene_max_abs);
   }
 
   // The fused node test's offsets, per axis a with o = org[a], v = inv[a] (floats), and
@@ -260,20 +286,21 @@ struct SimdRay {
   // (relative error 2^-53, inside the margins). Overflow to infinity only widens. With a zero or an
   // infinite inv (a direction component near 0), or an offset beyond the float range, the test runs
   // slab() and widen() themselves (slabs()).
-  __attribute__((target(PIERCE_AVX2_TARGET))) void node_offsets(const TraversalRay<float>& r, double scene_max_abs) {
+  // org_f, inv_f: the ray's origin and inv in lanes 0-2 (lane 3 is not used).
+  __attribute__((target(PIERCE_AVX2_TARGET))) void node_offsets(__m128 org_f, __m128 inv_f, float pad_,
+                                                                double scene_max_abs) {
     constexpr double u = 0x1p-24, k = 0x1p-20, tiny = 0x1p-140;
     // A box's coordinates are its triangles' float corners: each within half an ulp of the scene's.
     const double reach = scene_max_abs * (1.0 + 0x1p-23);
-    const __m128 inv_f = _mm_setr_ps(r.inv[0], r.inv[1], r.inv[2], 1.0f);
     const __m256d abs_mask = _mm256_set1_pd(-0.0);
-    const __m256d o = _mm256_cvtps_pd(_mm_setr_ps(r.org[0], r.org[1], r.org[2], 0.0f));
+    const __m256d o = _mm256_cvtps_pd(org_f);
     const __m256d v = _mm256_cvtps_pd(inv_f);
     const __m256d y = _mm256_mul_pd(_mm256_add_pd(_mm256_set1_pd(reach), _mm256_andnot_pd(abs_mask, o)),
                                     _mm256_andnot_pd(abs_mask, v));
     const __m256d minus_ov = _mm256_xor_pd(_mm256_mul_pd(o, v), abs_mask);
     const __m256d e = _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(3 * u), y), _mm256_set1_pd(tiny));
     const __m256d f = _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(k + 5 * u), y),
-                                    _mm256_set1_pd(double(r.pad) * (1.0 + 0x1p-20) + tiny));
+                                    _mm256_set1_pd(double(pad_) * (1.0 + 0x1p-20) + tiny));
     alignas(16) float nc[4], fc[4];
     _mm_store_ps(nc, _mm256_cvtpd_ps(_mm256_sub_pd(minus_ov, e)));
     _mm_store_ps(fc, _mm256_cvtpd_ps(_mm256_add_pd(minus_ov, f)));
@@ -423,10 +450,65 @@ struct SimdRay {
   }
 };
 
+// A ray's TraversalRay and SimdRay, once per ray rather than once per traversal, for both SIMD
+// levels (they read the same SimdRay). The same values as TraversalRay::assign() followed by
+// SimdRay::assign() (the same conversions, divisions and comparisons, in the same rounding;
+// kernels.PreparedRay checks every field bit for bit), but computed in registers: the axes of the
+// origin, direction and inverse are lanes of one vector each, and the SimdRay's broadcasts are
+// permutes of them, not loads of the fields just stored.
+__attribute__((target(PIERCE_AVX2_TARGET))) inline void prepare_simd_ray(const Ray& r, double scene_max_abs,
+                                                                       TraversalRay<float>& tr, SimdRay& sr) {
+  static_assert(sizeof(Vec3d) == 3 * sizeof(double) && offsetof(Ray, dir) == sizeof(Vec3d) &&
+                    offsetof(Ray, tmin) == 2 * sizeof(Vec3d),
+                "a Ray's axes are read four doubles at a time");
+  // Lane 3 (the next field of the Ray) is replaced: 0 in the origin, 1 in the direction.
+  const __m128 o = _mm256_cvtpd_ps(_mm256_blend_pd(_mm256_loadu_pd(&r.org.x), _mm256_setzero_pd(), 8));
+  const __m128 d = _mm256_cvtpd_ps(_mm256_blend_pd(_mm256_loadu_pd(&r.dir.x), _mm256_set1_pd(1.0), 8));
+  const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
+  const __m128 is_zero = _mm_cmpeq_ps(d, zero);
+  // 1 / d, 0 where d is 0 (dividing by 1 there, so no division by zero is made).
+  const __m128 v = _mm_andnot_ps(is_zero, _mm_div_ps(one, _mm_blendv_ps(d, one, is_zero)));
+  const __m128 abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff)),
+               big = _mm_set1_ps(std::numeric_limits<float>::max());
+  const __m128 a = _mm_and_ps(d, abs_mask);
+  const bool finite = (_mm_movemask_ps(_mm_and_ps(_mm_cmple_ps(_mm_and_ps(o, abs_mask), big), _mm_cmple_ps(a, big))) &
+                       7) == 7;
+  const int zero_bits = _mm_movemask_ps(is_zero) & 7;
+  // kz as assign() looks it up: (ax > ay) * 4 + (ax > az) * 2 + (ay > az). Lanes of a > (ay, az, ax)
+  // and of a > (az, ax, ay).
+  const int gt_next = _mm_movemask_ps(_mm_cmpgt_ps(a, _mm_permute_ps(a, _MM_SHUFFLE(3, 0, 2, 1))));
+  const int gt_prev = _mm_movemask_ps(_mm_cmpgt_ps(a, _mm_permute_ps(a, _MM_SHUFFLE(3, 1, 0, 2))));
+  const int kz = detail::kLargestAxis[(gt_next & 1) * 4 + (gt_prev & 1) * 2 + (gt_next >> 1 & 1)];
+  const int negative_bits = _mm_movemask_ps(_mm_cmplt_ps(d, zero));
+  const int pick = kz * 2 + (negative_bits >> kz & 1);
+  const int kx = detail::kShearX[pick], ky = detail::kShearY[pick];
+  // (d[kx], d[ky]) / d[kz], and 1 / d[kz] (the same division as inv's).
+  const __m128 sxy = _mm_div_ps(_mm_permutevar_ps(d, _mm_setr_epi32(kx, ky, kz, kz)), _mm_permutevar_ps(d, _mm_set1_epi32(kz)));
+  const float sz = _mm_cvtss_f32(_mm_permutevar_ps(v, _mm_set1_epi32(kz)));
+  const auto store3 = [](Vec3<float>& out, __m128 x) {
+    _mm_storel_pi(reinterpret_cast<__m64*>(&out.x), x);
+    _mm_store_ss(&out.z, _mm_movehl_ps(x, x));
+  };
+  store3(tr.org, o);
+  store3(tr.dir, d);
+  store3(tr.inv, v);
+  for (int k = 0; k < 3; ++k) tr.zero[k] = (zero_bits >> k & 1) != 0;
+  tr.kx = kx, tr.ky = ky, tr.kz = kz;
+  tr.sx = _mm_cvtss_f32(sxy);
+  tr.sy = _mm_cvtss_f32(_mm_movehdup_ps(sxy));
+  tr.sz = sz;
+  tr.set_range(r);
+  const float pad = TraversalRay<float>::pad_for(r, scene_max_abs);
+  tr.pad = pad;
+  tr.ok = zero_bits != 7 && finite;
+  sr.fill(o, v, zero_bits, kx, ky, kz, sxy, sz, pad, negative_bits & 7, scene_max_abs);
+}
+
 struct Avx2Ops {
-  SimdRay ray;
-  __attribute__((target(PIERCE_AVX2_TARGET))) Avx2Ops(const TraversalRay<float>& r, double scene_max_abs)
-      : ray(r, scene_max_abs) {}
+  // The ray's SimdRay, read where it was made (a copy's wide loads of the fields just stored
+  // would stall on store forwarding).
+  const SimdRay& ray;
+  explicit Avx2Ops(const SimdRay& prepared) : ray(prepared) {}
 
   // Entry distances by slot; the result has all bits set in the lanes of the children that pass.
   __attribute__((target(PIERCE_AVX2_TARGET))) __m256 slot_hits(const WideNode<float>& n, std::uint32_t order, float lo, float hi,
@@ -503,9 +585,10 @@ struct Avx2Ops {
 };
 
 struct Avx512Ops {
-  SimdRay ray;
-  __attribute__((target(PIERCE_AVX512_TARGET))) Avx512Ops(const TraversalRay<float>& r, double scene_max_abs)
-      : ray(r, scene_max_abs) {}
+  // The ray's SimdRay, read where it was made (a copy's wide loads of the fields just stored
+  // would stall on store forwarding).
+  const SimdRay& ray;
+  explicit Avx512Ops(const SimdRay& prepared) : ray(prepared) {}
 
   __attribute__((target(PIERCE_AVX512_TARGET))) __mmask8 slot_hits(const WideNode<float>& n, std::uint32_t order,
                                                                    float lo, float hi, __m256& tn) const {
