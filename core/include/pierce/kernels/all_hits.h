@@ -1,7 +1,6 @@
 #pragma once
 // `filter` (Amstutz et al. 2015, all hits): one traversal gathers every hit in [tmin, tmax],
 // sorted once in the total order; next() walks the sorted list.
-#include <algorithm>
 #include <vector>
 
 #include "pierce/kernels/wide_kernel.h"
@@ -19,7 +18,8 @@ class AllHitsKernel : public WideKernel<T, C> {
   void begin(const Ray& ray, std::size_t /*max_hits*/ = 0) {
     hits_.clear();
     pos_ = 0;
-    gather(ray, hits_);
+    this->prepare(ray);
+    this->gather_sorted(hits_);
   }
 
   // begin(ray), then every next() hit (up to max_hits, 0 = all) appended to `out`: gathered and
@@ -28,7 +28,8 @@ class AllHitsKernel : public WideKernel<T, C> {
     hits_.clear();
     pos_ = 0;
     const std::size_t first = out.size();
-    gather(ray, out);
+    this->prepare(ray);
+    this->gather_sorted(out);
     if (max_hits != 0 && out.size() - first > max_hits) out.resize(first + max_hits);
   }
 
@@ -39,16 +40,6 @@ class AllHitsKernel : public WideKernel<T, C> {
   }
 
  private:
-  // Every hit of the ray in [tmin, tmax], appended to `out` and sorted there.
-  void gather(const Ray& ray, std::vector<Hit>& out) {
-    this->prepare(ray);
-    const std::size_t first = out.size();
-    this->seed_root(this->ray_.tmin, this->ray_.tmax);
-    GatherInRange<T> p{this->ray_, out};
-    this->run(p);
-    std::sort(out.begin() + std::ptrdiff_t(first), out.end(), this->order_);
-  }
-
   std::vector<Hit> hits_;
   std::size_t pos_ = 0;
 };

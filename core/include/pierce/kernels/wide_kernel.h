@@ -70,6 +70,15 @@ class WideKernel {
     pending_.clear();
     seed(*bvh_, ray_, lo, hi, pending_, counters);
   }
+  // Every hit of the prepared ray in [tmin, tmax], appended to `out` and sorted there: one
+  // traversal, breadth first (GatherInRange), and one sort (`filter`, and `queue`'s gathering pass).
+  void gather_sorted(std::vector<Hit>& out) {
+    const std::size_t first = out.size();
+    seed_root(ray_.tmin, ray_.tmax);
+    GatherInRange<T> p{ray_, out};
+    run(p);
+    std::sort(out.begin() + std::ptrdiff_t(first), out.end(), order_);
+  }
   // Traverses until every pending node is done (true) or the policy suspends (false).
   template <class Policy>
   bool run(Policy& p) {
