@@ -4,6 +4,7 @@
 // policy, and how a traversal is seeded and run. The kernels differ only in their traversal policy
 // and in what they keep between next() calls.
 #include <algorithm>
+#include <limits>
 #include <type_traits>
 #include <vector>
 
@@ -38,7 +39,9 @@ struct GatherInRange : TraversalPolicy<T> {
   GatherInRange(const TraversalRay<T>& ray, std::vector<Hit>& out) : r(ray), hits(out) {}
   T lo() const { return r.tmin; }
   T hi() const { return r.tmax; }
-  T cull_bound() const { return r.tmax; }
+  // Nothing is ever culled (a node is pushed only if it is entered by hi()): the loop's check
+  // against +inf folds away.
+  T cull_bound() const { return std::numeric_limits<T>::infinity(); }
   void hit(const TriBlock<T>& b, int l, const TriangleHit<T>& h) { hits.push_back(make_hit(b, l, h)); }
 };
 
