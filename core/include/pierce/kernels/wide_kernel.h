@@ -96,7 +96,7 @@ class WideKernel {
   TraversalRay<T> ray_;
   static constexpr bool kHasSimdRay = std::is_same_v<T, float>;  // the SIMD levels run on float
   struct NoSimdRay {};
-  [[no_unique_address]] std::conditional_t<kHasSimdRay, simd::SimdRay, NoSimdRay> simd_ray_;
+  [[no_unique_address]] std::conditional_t<kHasSimdRay, simd::SimdRay, NoSimdRay> simd_ray_{};  // made by prepare()
   NodeStack<T> pending_;
 };
 
