@@ -164,11 +164,17 @@ void HitIterator::collect(const Ray& ray, std::size_t max_hits, std::vector<Hit>
   // One dispatch per ray, with the kernel's begin() and next() inlined into one loop.
   std::visit(
       [&](auto& k) {
-        if constexpr (requires { k.collect(ray, max_hits, out); }) {
-          k.collect(ray, max_hits, out);
-          return;
+        // A kernel that gathers its hits (`filter`, `queue`'s gathering pass) puts them in `out`
+        // itself, sorted; only the cut to max_hits is left.
+        if constexpr (requires { k.begin_into(ray, max_hits, out); }) {
+          const std::size_t first = out.size();
+          if (k.begin_into(ray, max_hits, out)) {
+            if (max_hits != 0 && out.size() - first > max_hits) out.resize(first + max_hits);
+            return;
+          }
+        } else {
+          k.begin(ray, max_hits);
         }
-        k.begin(ray, max_hits);
         Hit h;
         std::size_t n = 0;
         while ((max_hits == 0 || n < max_hits) && k.next(h)) {

@@ -461,6 +461,7 @@ __attribute__((target(PIERCE_AVX512_TARGET), flatten)) bool traverse_avx512(cons
   return traverse_with(simd::Avx512Ops(simd_ray_for(r, bvh.scene_max_abs, prepared, made)), bvh, r, pending, p, c);
 }
 
+// The traversal at `level`; `prepared` (or null) is read only at a SIMD level (simd_ray_for).
 template <typename T, class Pending, class Policy, class C>
 inline bool traverse_at(SimdLevel level, const WideBvh<T>& bvh, const TraversalRay<T>& r,
                         const simd::SimdRay* prepared, Pending& pending, Policy& p, C& c) {

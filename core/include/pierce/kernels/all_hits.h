@@ -15,22 +15,16 @@ class AllHitsKernel : public WideKernel<T, C> {
  public:
   explicit AllHitsKernel(const WideBvh<T>& bvh, HitOrder order = {}) : Base(bvh, order) {}
 
-  void begin(const Ray& ray, std::size_t /*max_hits*/ = 0) {
-    hits_.clear();
-    pos_ = 0;
-    this->prepare(ray);
-    this->gather_sorted(hits_);
-  }
+  void begin(const Ray& ray, std::size_t max_hits = 0) { begin_into(ray, max_hits, hits_); }
 
-  // begin(ray), then every next() hit (up to max_hits, 0 = all) appended to `out`: gathered and
-  // sorted there, not copied over from the kernel's own list.
-  void collect(const Ray& ray, std::size_t max_hits, std::vector<Hit>& out) {
+  // begin(), with every hit appended to `out` and sorted there instead of held for next()
+  // (HitIterator::collect: no copy through next()). Always true: the hits are all in `out`.
+  bool begin_into(const Ray& ray, std::size_t /*max_hits*/, std::vector<Hit>& out) {
     hits_.clear();
     pos_ = 0;
-    const std::size_t first = out.size();
     this->prepare(ray);
     this->gather_sorted(out);
-    if (max_hits != 0 && out.size() - first > max_hits) out.resize(first + max_hits);
+    return true;
   }
 
   bool next(Hit& out) {

@@ -49,18 +49,41 @@ class QueueKernel : public WideKernel<T, C> {
     deferred_.reserve(4 * bvh.stack_capacity());
   }
 
-  void begin(const Ray& ray, std::size_t max_hits = 0) { start(ray, max_hits, hits_); }
+  void begin(const Ray& ray, std::size_t max_hits = 0) { begin_into(ray, max_hits, hits_); }
 
-  // begin(ray, max_hits), then every next() hit (up to max_hits, 0 = all) appended to `out`. A
-  // gathering first pass gathers and sorts in `out` itself, as `filter`'s collect() does.
-  void collect(const Ray& ray, std::size_t max_hits, std::vector<Hit>& out) {
-    const std::size_t first = out.size();
-    if (start(ray, max_hits, out)) {
-      if (max_hits != 0 && out.size() - first > max_hits) out.resize(first + max_hits);
-      return;
+  // begin(). A gathering first pass appends every hit to `out`, sorted, and returns true (for
+  // HitIterator::collect: no copy through next()); a depth-first one holds its hits for next()
+  // and returns false.
+  bool begin_into(const Ray& ray, std::size_t max_hits, std::vector<Hit>& out) {
+    this->prepare(ray);
+    hits_.clear();
+    pos_ = 0;
+    depth_ = max_hits == 0 ? 1 : max_hits;
+    bound_ = this->ray_.tmax;
+    deferred_.clear();
+    const bool breadth = breadth_first();
+    ++rays_;
+    if (breadth) {
+      // `filter`'s pass: every hit in range, sorted once, nothing deferred. It runs where culling
+      // saves little, and breadth first the bound would close late anyway.
+      this->gather_sorted(out);
+      return true;
     }
-    Hit h;
-    for (std::size_t n = 0; (max_hits == 0 || n < max_hits) && next(h); ++n) out.push_back(h);
+    // The first pass, from the root (what the first next() would do, without the heap).
+    this->seed_root(this->ray_.tmin, this->ray_.tmax);
+    steps_ = 0;
+    Descend p{*this};
+    this->run(p);
+    // What culling saved on this ray: subtrees deferred per node traversed (none where the bound
+    // never closed). Measured on depth-first passes only, since a gathering pass defers nothing.
+    // 1/32: the average follows the last few dozen of them.
+    const float deferred = float(deferred_.size()) / float(steps_ > 0 ? steps_ : 1);
+    deferred_per_step_ += (deferred - deferred_per_step_) * (1.0f / 32.0f);
+    // While the probes say "breadth first" by a wide margin, probe half as often (down to every
+    // kProbeMost-th ray); one that does not brings the interval back to kProbeLeast.
+    const bool clear = deferred < kBreadthFirstBelow / 4 && deferred_per_step_ < kBreadthFirstBelow / 4;
+    probe_every_ = clear ? std::min(2 * probe_every_, kProbeMost) : kProbeLeast;
+    return false;
   }
 
   // Whether the next begin() runs its first pass breadth first: as the constructor fixed it, or
@@ -98,40 +121,6 @@ class QueueKernel : public WideKernel<T, C> {
   }
 
  private:
-  // begin()'s work. A gathering first pass gathers into `gathered` (hits_ for begin(), the
-  // caller's vector for collect()) and returns true; a depth-first one holds its hits and returns false.
-  bool start(const Ray& ray, std::size_t max_hits, std::vector<Hit>& gathered) {
-    this->prepare(ray);
-    hits_.clear();
-    pos_ = 0;
-    depth_ = max_hits == 0 ? 1 : max_hits;
-    bound_ = this->ray_.tmax;
-    deferred_.clear();
-    const bool breadth = breadth_first();
-    ++rays_;
-    if (breadth) {
-      // `filter`'s pass: every hit in range, sorted once, nothing deferred. It runs where culling
-      // saves little, and breadth first the bound would close late anyway.
-      this->gather_sorted(gathered);
-      return true;
-    }
-    // The first pass, from the root (what the first next() would do, without the heap).
-    this->seed_root(this->ray_.tmin, this->ray_.tmax);
-    steps_ = 0;
-    Descend p{*this};
-    this->run(p);
-    // What culling saved on this ray: subtrees deferred per node traversed (none where the bound
-    // never closed). Measured on depth-first passes only, since a gathering pass defers nothing.
-    // 1/32: the average follows the last few dozen of them.
-    const float deferred = float(deferred_.size()) / float(steps_ > 0 ? steps_ : 1);
-    deferred_per_step_ += (deferred - deferred_per_step_) * (1.0f / 32.0f);
-    // While the probes say "breadth first" by a wide margin, probe half as often (down to every
-    // kProbeMost-th ray); one that does not brings the interval back to kProbeLeast.
-    const bool clear = deferred < kBreadthFirstBelow / 4 && deferred_per_step_ < kBreadthFirstBelow / 4;
-    probe_every_ = clear ? std::min(2 * probe_every_, kProbeMost) : kProbeLeast;
-    return false;
-  }
-
   // Every hit is held in order; a node entered beyond the depth_-th held hit not yet returned is
   // deferred. Children are pushed onto the stack unchecked (the fast SIMD push) and checked when
   // popped.

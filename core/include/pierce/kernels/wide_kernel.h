@@ -85,9 +85,9 @@ class WideKernel {
   // Traverses until every pending node is done (true) or the policy suspends (false).
   template <class Policy>
   bool run(Policy& p) {
-    const simd::SimdRay* prepared = nullptr;
-    if constexpr (kHasSimdRay) prepared = simd_ != SimdLevel::scalar ? &simd_ray_ : nullptr;
-    return detail::traverse_at(simd_, *bvh_, ray_, prepared, pending_, p, counters);
+    // (At the scalar level traverse_at does not read the SimdRay, which prepare() then left alone.)
+    if constexpr (kHasSimdRay) return detail::traverse_at(simd_, *bvh_, ray_, &simd_ray_, pending_, p, counters);
+    return detail::traverse_at(simd_, *bvh_, ray_, nullptr, pending_, p, counters);
   }
 
   const WideBvh<T>* bvh_;
