@@ -368,27 +368,27 @@ inline bool traverse_with(const Ops& ops, const WideBvh<T>& bvh, const Traversal
     const WideNode<T>& node = nodes[cur.ref];
     c.node_tests += std::uint64_t(__builtin_popcount(node.valid()));
     if constexpr (!decltype(pending)::kOrdered && !Policy::kCullsInRange) {
+      if constexpr (Policy::kAnyOrder) {
+        // Breadth first (FifoCursor): every child that passes joins the queue's tail in slot order,
+        // unranked, prefetched, and the node processed next is the oldest pending one. No branch
+        // on how many passed: breadth first that count is unpredictable, and guessing it cost
+        // about a tenth of `filter`'s time (docs/BENCHMARKS.md, twenty-second session).
+        pending.ensure_room();
+        const std::uint32_t slots = ops.push_all(node, p.lo(), p.hi(), pending.top());
+        if (prefetch) detail_prefetch(nodes, blocks, slots, node.child);
+        pending.grow(std::size_t(__builtin_popcount(slots)));
+        continue;
+      }
       // Depth first: every child that passes goes onto the stack far to near in SIMD stores, and
       // the nearest (the last stored) is descended into at once (taken from the registers, not
       // read back; the stack keeps the others). The others are prefetched; the nearest is read at
-      // once anyway. Where the policy takes any order: in slot order, unranked, breadth first.
-      if constexpr (Policy::kAnyOrder) pending.ensure_room();
-      NodeEntry<T>* const pushed = pending.top();
+      // once anyway.
       std::uint32_t others;
-      const std::uint32_t n = ops.template push_hits<!Policy::kAnyOrder>(node, p.lo(), p.hi(), pushed, cur, others);
+      const std::uint32_t n = ops.push_hits(node, p.lo(), p.hi(), pending.top(), cur, others);
       if (n == 0) continue;
       // The addresses come from the node, not from the entries just stored: a load from a wide
       // store still in flight waits for it.
       if (prefetch) detail_prefetch(nodes, blocks, others, node.child);
-      if constexpr (Policy::kAnyOrder) {
-        // Breadth first (FifoCursor): the nearest child joins the others at the tail (the
-        // one-child path stored nothing, the others stored it last), prefetched like them, and
-        // the node processed next is the oldest pending one.
-        if (prefetch) detail_prefetch(nodes, blocks, &cur, 1);
-        pushed[n - 1] = cur;
-        pending.grow(n);
-        continue;
-      }
       pending.grow(n - 1);
       have = true;
       continue;

@@ -6,6 +6,8 @@
 //    near in two SIMD stores (compressed with AVX-512, left-packed by a table with AVX2), so the
 //    loop neither branches per child nor sorts; it also gives the slots of the stored children
 //    other than the nearest, so the loop prefetches them by addresses read from the node;
+//  - push_all: the same test, with every child that passes stored in slot order and no branch on
+//    how many did (a breadth-first traversal's queue);
 //  - tri_test: the triangle test of a leaf block's eight lanes. A lane whose edge functions are
 //    non-zero and finite has exact signs already and is finished in SIMD (det, t, the clamp into
 //    the triangle's slab interval, the range); only lanes with a zero or non-finite edge function
@@ -86,12 +88,9 @@ struct ScalarOps {
     return mask;
   }
   // The children that pass, stored at `top` far to near (the nearest last, also given in `nearest`,
-  // so the loop can descend into it without reading it back); returns how many. kRanked false: the
-  // caller does not care in which order (the SIMD levels then store them in slot order, unranked;
-  // here ranking costs nothing extra).
+  // so the loop can descend into it without reading it back); returns how many.
   // `others`: the slots of the stored children other than the nearest, for the caller's prefetch
   // (read from the node, which is in the cache, rather than from the entries just stored).
-  template <bool kRanked = true>
   std::uint32_t push_hits(const WideNode<T>& n, T lo, T hi, NodeEntry<T>* top, NodeEntry<T>& nearest,
                           std::uint32_t& others) const {
     T tn[kWideArity];
@@ -110,6 +109,20 @@ struct ScalarOps {
       others &= ~(1u << WideNode<T>::slot_at_rank(order, __builtin_ctz(mask)));
     }
     return count;
+  }
+  // Every child that passes, stored at `top` in any order (a breadth-first traversal's queue); returns
+  // the slots stored (as many entries as bits), for the caller's prefetch.
+  std::uint32_t push_all(const WideNode<T>& n, T lo, T hi, NodeEntry<T>* top) const {
+    T tn[kWideArity];
+    NodeRef child[kWideArity];
+    const std::uint32_t order = n.order[oct];
+    std::uint32_t slots = 0;
+    for (std::uint32_t m = node_hits(n, order, lo, hi, tn, child); m != 0; m &= m - 1) {
+      const int k = __builtin_ctz(m);
+      *top++ = {tn[k], child[k]};
+      slots |= 1u << WideNode<T>::slot_at_rank(order, k);
+    }
+    return slots;
   }
   // Every lane to the scalar test.
   LeafLanes tri_test(const TriBlock<T>& b, T /*lo*/, T /*hi*/, BlockHits<T>& /*out*/) const { return {b.valid, 0}; }
@@ -156,12 +169,10 @@ __attribute__((target(PIERCE_AVX2_TARGET))) inline __m256i rank_slots_far_to_nea
   return _mm256_and_si256(_mm256_srlv_epi32(_mm256_set1_epi32(int(order)), shifts), _mm256_set1_epi32(7));
 }
 
-// The slot of push_hits' nearest child, stored in lane `lane` (far to near by rank_slots_far_to_near
-// where kRanked, so lane k holds rank 7 - k; else in slot order).
-template <bool kRanked>
+// The slot of push_hits' nearest child, stored in lane `lane` (far to near by rank_slots_far_to_near,
+// so lane k holds rank 7 - k).
 inline int nearest_slot(std::uint32_t order, int lane) {
-  if constexpr (kRanked) return WideNode<float>::slot_at_rank(order, kWideArity - 1 - lane);
-  return lane;
+  return WideNode<float>::slot_at_rank(order, kWideArity - 1 - lane);
 }
 
 // The eight (tn, child) entries of a node in lane order, as NodeEntry<float> pairs: entries 0-3 in
@@ -538,8 +549,22 @@ struct Avx2Ops {
     return std::uint32_t(_mm256_movemask_ps(_mm256_permutevar8x32_ps(pass, rank)));
   }
 
-  // ScalarOps::push_hits: two left-packed stores of four entries each.
-  template <bool kRanked = true>
+  // The entries (tn, child) of the lanes in `mask`, stored at `top` in lane order: two left-packed
+  // stores of four entries each. Returns how many.
+  __attribute__((target(PIERCE_AVX2_TARGET))) static std::uint32_t store_lanes(__m256 tn, __m256i child,
+                                                                               std::uint32_t mask, NodeEntry<float>* top) {
+    __m256i first, second;
+    entry_pairs(tn, child, first, second);
+    const std::uint32_t m0 = mask & 15u, m1 = mask >> 4;
+    const auto n0 = std::uint32_t(__builtin_popcount(m0));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(top),
+                        _mm256_permutevar8x32_epi32(first, _mm256_load_si256(reinterpret_cast<const __m256i*>(kLeftPack4.idx[m0]))));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(top + n0),
+                        _mm256_permutevar8x32_epi32(second, _mm256_load_si256(reinterpret_cast<const __m256i*>(kLeftPack4.idx[m1]))));
+    return n0 + std::uint32_t(__builtin_popcount(m1));
+  }
+
+  // ScalarOps::push_hits.
   __attribute__((target(PIERCE_AVX2_TARGET))) std::uint32_t push_hits(const WideNode<float>& n, float lo, float hi,
                                                           NodeEntry<float>* top, NodeEntry<float>& nearest,
                                                           std::uint32_t& others) const {
@@ -554,28 +579,25 @@ struct Avx2Ops {
       others = 0;
       return 1;
     }
-    __m256i child = _mm256_load_si256(reinterpret_cast<const __m256i*>(n.child));
-    std::uint32_t mask;
-    if constexpr (kRanked) {
-      const __m256i rank = rank_slots_far_to_near(order);
-      mask = std::uint32_t(_mm256_movemask_ps(_mm256_permutevar8x32_ps(pass, rank)));
-      tn = _mm256_permutevar8x32_ps(tn, rank);
-      child = _mm256_permutevar8x32_epi32(child, rank);
-    } else {
-      mask = slots;
-    }
+    const __m256i rank = rank_slots_far_to_near(order);
+    const auto mask = std::uint32_t(_mm256_movemask_ps(_mm256_permutevar8x32_ps(pass, rank)));
+    tn = _mm256_permutevar8x32_ps(tn, rank);
+    const __m256i child =
+        _mm256_permutevar8x32_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(n.child)), rank);
     const int near_lane = 31 - __builtin_clz(mask);
-    others = slots & ~(1u << nearest_slot<kRanked>(order, near_lane));
+    others = slots & ~(1u << nearest_slot(order, near_lane));
     nearest = lane_entry(tn, child, near_lane);
-    __m256i first, second;
-    entry_pairs(tn, child, first, second);
-    const std::uint32_t m0 = mask & 15u, m1 = mask >> 4;
-    const auto n0 = std::uint32_t(__builtin_popcount(m0));
-    auto* out = reinterpret_cast<__m256i*>(top);
-    _mm256_storeu_si256(out, _mm256_permutevar8x32_epi32(first, _mm256_load_si256(reinterpret_cast<const __m256i*>(kLeftPack4.idx[m0]))));
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(top + n0),
-                        _mm256_permutevar8x32_epi32(second, _mm256_load_si256(reinterpret_cast<const __m256i*>(kLeftPack4.idx[m1]))));
-    return n0 + std::uint32_t(__builtin_popcount(m1));
+    return store_lanes(tn, child, mask, top);
+  }
+
+  // ScalarOps::push_all: every child that passes, in slot order, with no branch on how many do
+  // (in a breadth-first traversal that count is what the branches would have to guess).
+  __attribute__((target(PIERCE_AVX2_TARGET))) std::uint32_t push_all(const WideNode<float>& n, float lo, float hi,
+                                                                     NodeEntry<float>* top) const {
+    __m256 tn;
+    const auto slots = std::uint32_t(_mm256_movemask_ps(slot_hits(n, n.order[ray.oct], lo, hi, tn)));
+    store_lanes(tn, _mm256_load_si256(reinterpret_cast<const __m256i*>(n.child)), slots, top);
+    return slots;
   }
 
   __attribute__((target(PIERCE_AVX2_TARGET))) LeafLanes tri_test(const TriBlock<float>& b, float lo, float hi,
@@ -615,8 +637,20 @@ struct Avx512Ops {
     return _mm256_movepi32_mask(_mm256_permutexvar_epi32(rank, _mm256_movm_epi32(ok)));
   }
 
-  // ScalarOps::push_hits: compressed in registers (a compress straight to memory is slow on Zen 4).
-  template <bool kRanked = true>
+  // Avx2Ops::store_lanes, compressed in registers (a compress straight to memory is slow on Zen 4).
+  __attribute__((target(PIERCE_AVX512_TARGET))) static std::uint32_t store_lanes(__m256 tn, __m256i child,
+                                                                                 std::uint32_t mask,
+                                                                                 NodeEntry<float>* top) {
+    __m256i first, second;
+    entry_pairs(tn, child, first, second);
+    const auto m0 = __mmask8(mask & 15u), m1 = __mmask8(mask >> 4);
+    const auto n0 = std::uint32_t(__builtin_popcount(m0));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(top), _mm256_maskz_compress_epi64(m0, first));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(top + n0), _mm256_maskz_compress_epi64(m1, second));
+    return n0 + std::uint32_t(__builtin_popcount(m1));
+  }
+
+  // ScalarOps::push_hits.
   __attribute__((target(PIERCE_AVX512_TARGET))) std::uint32_t push_hits(const WideNode<float>& n, float lo, float hi,
                                                                         NodeEntry<float>* top,
                                                                         NodeEntry<float>& nearest,
@@ -631,24 +665,24 @@ struct Avx512Ops {
       others = 0;
       return 1;
     }
-    __m256i child = _mm256_load_si256(reinterpret_cast<const __m256i*>(n.child));
-    std::uint32_t mask = ok;
-    if constexpr (kRanked) {
-      const __m256i rank = rank_slots_far_to_near(order);
-      mask = _mm256_movepi32_mask(_mm256_permutexvar_epi32(rank, _mm256_movm_epi32(ok)));
-      tn = _mm256_permutexvar_ps(rank, tn);
-      child = _mm256_permutexvar_epi32(rank, child);
-    }
+    const __m256i rank = rank_slots_far_to_near(order);
+    const std::uint32_t mask = _mm256_movepi32_mask(_mm256_permutexvar_epi32(rank, _mm256_movm_epi32(ok)));
+    tn = _mm256_permutexvar_ps(rank, tn);
+    const __m256i child =
+        _mm256_permutexvar_epi32(rank, _mm256_load_si256(reinterpret_cast<const __m256i*>(n.child)));
     const int near_lane = 31 - __builtin_clz(mask);
-    others = std::uint32_t(ok) & ~(1u << nearest_slot<kRanked>(order, near_lane));
+    others = std::uint32_t(ok) & ~(1u << nearest_slot(order, near_lane));
     nearest = lane_entry(tn, child, near_lane);
-    __m256i first, second;
-    entry_pairs(tn, child, first, second);
-    const auto m0 = __mmask8(mask & 15u), m1 = __mmask8(mask >> 4);
-    const auto n0 = std::uint32_t(__builtin_popcount(m0));
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(top), _mm256_maskz_compress_epi64(m0, first));
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(top + n0), _mm256_maskz_compress_epi64(m1, second));
-    return n0 + std::uint32_t(__builtin_popcount(m1));
+    return store_lanes(tn, child, mask, top);
+  }
+
+  // ScalarOps::push_all (Avx2Ops::push_all).
+  __attribute__((target(PIERCE_AVX512_TARGET))) std::uint32_t push_all(const WideNode<float>& n, float lo, float hi,
+                                                                       NodeEntry<float>* top) const {
+    __m256 tn;
+    const __mmask8 slots = slot_hits(n, n.order[ray.oct], lo, hi, tn);
+    store_lanes(tn, _mm256_load_si256(reinterpret_cast<const __m256i*>(n.child)), slots, top);
+    return slots;
   }
 
   // SimdRay's (AVX2 instructions: the classification has no use for mask registers).
