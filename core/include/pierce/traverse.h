@@ -213,11 +213,6 @@ inline void detail_prefetch(const WideNode<T>* nodes, const TriBlock<T>* blocks,
                             const NodeRef* child) {
   for (std::uint32_t m = mask; m != 0; m &= m - 1) detail_prefetch(nodes, blocks, child[__builtin_ctz(m)]);
 }
-template <typename T>
-inline void detail_prefetch(const WideNode<T>* nodes, const TriBlock<T>* blocks, const NodeEntry<T>* entries,
-                            std::uint32_t n) {
-  for (std::uint32_t i = 0; i < n; ++i) detail_prefetch(nodes, blocks, entries[i].ref);
-}
 
 // Whether a traversal of `bvh` prefetches the children it will visit (prefetch_mode.h: by the
 // BVH's size unless PIERCE_PREFETCH or set_prefetch_mode() forces it). One decision per traversal.
