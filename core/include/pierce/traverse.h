@@ -118,9 +118,9 @@ struct TraversalPolicy {
   // True if suspend() can return true (it then sees the pending nodes).
   static constexpr bool kSuspends = false;
   // True if the policy's result does not depend on the order in which nodes are visited (`filter`
-  // takes every hit of a fixed range; `queue`'s breadth-first pass culls at a bound that may fall,
-  // checked when a node is taken): children are then pushed unranked, in slot order, and visited
-  // breadth first (FifoCursor).
+  // and `queue`'s gathering pass take every hit of a fixed range): children are then pushed
+  // unranked, in slot order, with no branch on how many passed (push_all), and visited breadth
+  // first (FifoCursor). A node taken beyond cull_bound() is still culled when popped.
   static constexpr bool kAnyOrder = false;
   void culled(NodeEntry<T> /*node*/) {}
   template <class Pending>

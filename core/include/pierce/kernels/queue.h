@@ -58,8 +58,6 @@ class QueueKernel : public WideKernel<T, C> {
     this->prepare(ray);
     hits_.clear();
     pos_ = 0;
-    depth_ = max_hits == 0 ? 1 : max_hits;
-    bound_ = this->ray_.tmax;
     deferred_.clear();
     const bool breadth = breadth_first();
     ++rays_;
@@ -69,7 +67,7 @@ class QueueKernel : public WideKernel<T, C> {
       this->gather_sorted(out);
       return true;
     }
-    descend_first();
+    descend_first(max_hits);
     return false;
   }
 
@@ -112,7 +110,11 @@ class QueueKernel : public WideKernel<T, C> {
   // where culling saves little, then stays small enough to inline into HitIterator::collect, as
   // `filter`'s does (the two calls cost `queue` about 1.5 % of its instructions against `filter`'s
   // on elephant at N = 5, in callgrind).
-  [[gnu::noinline]] void descend_first() {
+  // The bound (depth_, bound_) is set here: after a gathering pass nothing is deferred, so next()
+  // never reads it.
+  [[gnu::noinline]] void descend_first(std::size_t max_hits) {
+    depth_ = max_hits == 0 ? 1 : max_hits;
+    bound_ = this->ray_.tmax;
     // The first pass, from the root (what the first next() would do, without the heap).
     this->seed_root(this->ray_.tmin, this->ray_.tmax);
     steps_ = 0;

@@ -76,7 +76,7 @@ class WideKernel {
   // Every hit of the prepared ray in [tmin, tmax], appended to `out` and sorted there: one
   // traversal, breadth first (GatherInRange), and one sort (`filter`, and `queue`'s gathering pass).
   // Inlined into both, so that `queue`'s gathering pass costs no call more than `filter`'s.
-  [[gnu::always_inline]] inline void gather_sorted(std::vector<Hit>& out) {
+  [[gnu::always_inline]] void gather_sorted(std::vector<Hit>& out) {
     const std::size_t first = out.size();
     seed_root(ray_.tmin, ray_.tmax);
     GatherInRange<T> p{ray_, out};
