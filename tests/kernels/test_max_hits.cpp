@@ -79,9 +79,11 @@ TEST(MaxHits, QueueFirstPassInEitherOrder) {
   }
 }
 
-// Adaptive `queue` probes depth first less often while the probes find nothing to cull (hint 1000:
-// no ray closes its bound), and runs near to far again once culling defers much (hint 1).
-TEST(MaxHits, QueueProbesLessOftenWhileBreadthFirstIsClear) {
+// Adaptive `queue` probes depth first less often while the probes find little to cull (hint 30:
+// 17 of the 60 rays hold 30 hits or more, and their bounds close near their ends); not at all while
+// no gathered ray holds as many hits as the hint (hint 1000: a probe could defer nothing); and runs
+// near to far again once culling defers much (hint 1).
+TEST(MaxHits, QueueProbesOnlyWhereCullingCanPay) {
   const Fixture f = make_fixture();
   QueueKernel<float> k(f.world->accel.wide());
   auto run = [&](std::size_t hint, std::size_t rays, std::size_t count_from) {
@@ -95,10 +97,11 @@ TEST(MaxHits, QueueProbesLessOftenWhileBreadthFirstIsClear) {
     }
     return depth_first;
   };
-  // Every 32nd ray would be 64 of the last 2048.
-  const std::size_t probes = run(1000, 4096, 2048);
-  EXPECT_GT(probes, 0u) << "it still probes";
-  EXPECT_LE(probes, 2048u / 128) << "probes at most every 128th ray once they find nothing";
+  // Every 32nd ray would be 128 of the last 4096.
+  const std::size_t probes = run(30, 8192, 4096);
+  EXPECT_GT(probes, 0u) << "rays hold 30 hits: it still probes";
+  EXPECT_LT(probes, 4096u / 32) << "less often than every 32nd ray while the probes find little to cull";
+  EXPECT_EQ(run(1000, 4096, 2048), 0u) << "no ray holds 1000 hits: no probe";
   EXPECT_EQ(run(1, 2048, 1536), 512u) << "at hint 1 culling defers much: near to far again";
 }
 

@@ -64,7 +64,9 @@ class QueueKernel : public WideKernel<T, C> {
     if (breadth) {
       // `filter`'s pass: every hit in range, sorted once, nothing deferred. It runs where culling
       // saves little, and breadth first the bound would close late anyway.
+      const std::size_t first = out.size();
       this->gather_sorted(out);
+      could_cull_ |= out.size() - first >= (max_hits == 0 ? 1 : max_hits);
       return true;
     }
     descend_first(max_hits);
@@ -76,10 +78,15 @@ class QueueKernel : public WideKernel<T, C> {
   // node traversed, but for every probe_every_-th ray, which runs depth first to keep that average
   // current. The probes cost: where no ray closes its bound (CGAL's meshes, the shell at N = 5 and
   // 15), probing every 32nd ray kept `queue` measurably behind `filter` (docs/BENCHMARKS.md,
-  // eighteenth session), so while the probes find nothing to cull they come less often.
+  // eighteenth session), so while the probes find nothing to cull they come less often. And a probe
+  // runs only once a gathered ray since the last one held as many hits as the bound's depth: a ray
+  // with fewer closes no bound, so depth first it would defer nothing, and where no ray holds that
+  // many (CGAL's meshes and blob at N = 15) a probe could only cost.
   bool breadth_first() const {
-    if (first_pass_ == QueueFirstPass::adaptive)
-      return deferred_per_step_ < kBreadthFirstBelow && (rays_ & (probe_every_ - 1)) != probe_every_ - 1;
+    if (first_pass_ == QueueFirstPass::adaptive) {
+      const bool probe_due = (rays_ & (probe_every_ - 1)) == probe_every_ - 1;
+      return deferred_per_step_ < kBreadthFirstBelow && !(could_cull_ && probe_due);
+    }
     return first_pass_ == QueueFirstPass::breadth_first;
   }
 
@@ -118,6 +125,7 @@ class QueueKernel : public WideKernel<T, C> {
     // The first pass, from the root (what the first next() would do, without the heap).
     this->seed_root(this->ray_.tmin, this->ray_.tmax);
     steps_ = 0;
+    could_cull_ = false;
     Descend p{*this};
     this->run(p);
     // What culling saved on this ray: subtrees deferred per node traversed (none where the bound
@@ -178,6 +186,7 @@ class QueueKernel : public WideKernel<T, C> {
   // (a power of two), to measure what culling would save.
   static constexpr std::uint64_t kProbeLeast = 32, kProbeMost = 256;
   std::uint64_t probe_every_ = kProbeLeast;
+  bool could_cull_ = false;  // a gathering pass since the last probe held max_hits hits (1 without a hint) or more
 };
 
 }  // namespace pierce
