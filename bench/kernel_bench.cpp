@@ -524,8 +524,10 @@ void print_scene(const SceneResult& r, const Settings& st) {
         const Cell* q = find_cell(r, own("queue"), n);
         const Cell* a = find_cell(r, own("restart"), n);
         const Cell* f = find_cell(r, own("filter"), n);
-        if (q && a && f)
-          std::cout << "; queue / min(restart, filter) " << fmt("%.2f", q->median_seconds / std::min(a->median_seconds, f->median_seconds));
+        if (q && a && f) {
+          const Cell* better = a->median_seconds < f->median_seconds ? a : f;
+          std::cout << "; queue / min(restart, filter) " << ratio(q, better) << spread(q, better);
+        }
       }
       std::cout << "\n";
     }
