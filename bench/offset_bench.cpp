@@ -324,7 +324,7 @@ int run(int argc, char** argv) {
     const double tris = double(w.scene.triangle_count());
     for (HemisphereSet s : sets) {
       const auto t0 = Clock::now();
-      built[wi].push_back(build_origin_offsets(w.scene, w.accel->bvh(), s));
+      built[wi].push_back(build_origin_offsets(w.scene, w.accel->wide(), s));
       const double secs = seconds_since(t0);
       const OriginOffsets& oo = built[wi].back();
       std::size_t positive = 0, all = 0;
@@ -333,7 +333,7 @@ int run(int argc, char** argv) {
           for (int side = 0; side < 2; ++side)
             for (const Hemisphere& h : oo.hemispheres(g, p, side)) positive += h.radius > 0, ++all;
       std::printf("| %s | %.0f | %.0f | %s | %.0f | %.2f | %.0f%% |\n", w.name.c_str(), tris,
-                  double(w.accel->bvh().memory_bytes()) / tris, std::string(hemisphere_set_name(s)).c_str(),
+                  double(w.accel->wide().memory_bytes()) / tris, std::string(hemisphere_set_name(s)).c_str(),
                   double(oo.memory_bytes()) / tris, secs, 100.0 * double(positive) / double(std::max<std::size_t>(all, 1)));
     }
   }

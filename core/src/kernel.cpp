@@ -85,10 +85,9 @@ std::optional<KernelKind> parse_kernel(std::string_view name) {
 }
 
 struct Accel::Lazy {
-  std::once_flag bvh_once, embree_once, bvh_double_once, wide_double_once;
+  std::once_flag bvh_once, embree_once, wide_double_once;
   Bvhf bvh;
   std::unique_ptr<EmbreeAccel> embree;
-  Bvhd bvh_double;
   WideBvhd wide_double;
 };
 
@@ -111,19 +110,13 @@ const EmbreeAccel& Accel::embree() const {
   return *lazy_->embree;
 }
 
-const Bvhd& Accel::bvh_double() const {
-  std::call_once(lazy_->bvh_double_once, [this] { lazy_->bvh_double = build_bvh<double>(*scene_); });
-  return lazy_->bvh_double;
-}
-
 const WideBvhd& Accel::wide_double() const {
   std::call_once(lazy_->wide_double_once, [this] { lazy_->wide_double = build_wide_bvh<double>(*scene_); });
   return lazy_->wide_double;
 }
 
 std::size_t Accel::memory_bytes() const {
-  return wide_.memory_bytes() + lazy_->bvh.memory_bytes() + lazy_->bvh_double.memory_bytes() +
-         lazy_->wide_double.memory_bytes();
+  return wide_.memory_bytes() + lazy_->bvh.memory_bytes() + lazy_->wide_double.memory_bytes();
 }
 
 std::string unsupported_reason(const Accel& accel, KernelKind kind) {

@@ -13,6 +13,7 @@
 #include <unordered_map>
 
 #include "pierce/analysis/exact_predicates.h"
+#include "pierce/proximity.h"
 
 namespace pierce {
 
@@ -90,52 +91,47 @@ double clipped_dist2(const Vec3d& p, const Vec3d (&v)[3], const double (&s)[3], 
 }
 
 // Nearest distance from x to the BVH's triangles inside {s >= -slab}, skipping those `skip`
-// accepts. Depth-first, nearer child first, pruned by box distance and by the half-space.
+// accepts. On the one traversal (proximity.h): depth first, nearer child first, pruned by box
+// distance and by the half-space.
 template <typename Skip>
-double nearest_in_halfspace(const Bvhf& bvh, const Vec3d& x, const SidePlane& pl, double slab, double max_dist,
-                            std::vector<std::uint32_t>& stack, Skip&& skip) {
-  double best2 = max_dist * max_dist;
-  auto box_dist2 = [&](const BBoxf& b) {
+double nearest_in_halfspace(const WideBvhf& bvh, const Vec3d& x, const SidePlane& pl, double slab, double max_dist,
+                            NodeStack<float>& stack, Skip&& skip) {
+  struct Nearest : ProximityPolicy<float> {
+    const Vec3d& x;
+    const SidePlane& pl;
+    double slab;
+    Skip& skip;
+    double best2;
+    Nearest(const Vec3d& from, const SidePlane& plane, double s, Skip& sk, double b)
+        : x(from), pl(plane), slab(s), skip(sk), best2(b) {}
+    // Keys are float: rounding to nearest is monotone, so no box nearer than best2 is skipped.
+    float hi() const { return float(best2); }
+    float cull_bound() const { return float(best2); }
+    void leaf(const TriBlock<float>& b) {
+      for (std::uint32_t m = b.valid; m != 0; m &= m - 1) {
+        const Triangle<float> t = b.triangle(__builtin_ctz(m));
+        if (skip(t.geom, t.prim)) continue;
+        const Vec3d v[3] = {Vec3d(t.v0), Vec3d(t.v1), Vec3d(t.v2)};
+        const double s[3] = {pl.eval(v[0]), pl.eval(v[1]), pl.eval(v[2])};
+        if (s[0] < -slab && s[1] < -slab && s[2] < -slab) continue;
+        best2 = std::min(best2, clipped_dist2(x, v, s, slab));
+      }
+    }
+  } p{x, pl, slab, skip, max_dist * max_dist};
+  auto entered = [&](const BBoxf& b, float& key) {
+    Vec3d far;  // the box's corner farthest along the plane's normal: max of s over the box
     double d2 = 0;
     for (int a = 0; a < 3; ++a) {
+      far[a] = pl.n[a] > 0 ? double(b.hi[a]) : double(b.lo[a]);
       const double lo = b.lo[a], hi = b.hi[a];
       const double e = x[a] < lo ? lo - x[a] : (x[a] > hi ? x[a] - hi : 0.0);
       d2 += e * e;
     }
-    return d2;
-  };
-  auto box_above = [&](const BBoxf& b) {  // max of s over the box >= -slab
-    Vec3d far;
-    for (int a = 0; a < 3; ++a) far[a] = pl.n[a] > 0 ? double(b.hi[a]) : double(b.lo[a]);
+    key = float(d2);
     return pl.eval(far) >= -slab;
   };
-  if (bvh.empty()) return max_dist;
-  stack.clear();
-  stack.push_back(0);
-  while (!stack.empty()) {
-    const BvhNode<float>& nd = bvh.nodes[stack.back()];
-    stack.pop_back();
-    if (box_dist2(nd.box) >= best2 || !box_above(nd.box)) continue;
-    if (!nd.is_leaf()) {
-      const std::uint32_t a = nd.first, b = nd.first + 1;
-      const double da = box_dist2(bvh.nodes[a].box), db = box_dist2(bvh.nodes[b].box);
-      if (da < db) {
-        stack.push_back(b), stack.push_back(a);
-      } else {
-        stack.push_back(a), stack.push_back(b);
-      }
-      continue;
-    }
-    for (std::uint32_t i = nd.first; i < nd.first + nd.count; ++i) {
-      const Triangle<float>& t = bvh.tris[i];
-      if (skip(t.geom, t.prim)) continue;
-      const Vec3d v[3] = {Vec3d(t.v0), Vec3d(t.v1), Vec3d(t.v2)};
-      const double s[3] = {pl.eval(v[0]), pl.eval(v[1]), pl.eval(v[2])};
-      if (s[0] < -slab && s[1] < -slab && s[2] < -slab) continue;
-      best2 = std::min(best2, clipped_dist2(x, v, s, slab));
-    }
-  }
-  return std::sqrt(best2);
+  traverse_proximity(bvh, stack, entered, p);
+  return std::sqrt(p.best2);
 }
 
 std::uint64_t splitmix(std::uint64_t& s) {
@@ -303,7 +299,7 @@ std::uint32_t OriginOffsets::surface_id(std::uint32_t geom, std::uint32_t prim) 
   return patch_.empty() ? std::uint32_t(i) : patch_[i];
 }
 
-OriginOffsets build_origin_offsets(const Scene& scene, const Bvhf& bvh, HemisphereSet kind,
+OriginOffsets build_origin_offsets(const Scene& scene, const WideBvhf& bvh, HemisphereSet kind,
                                    const OriginOffsetOptions& opts) {
   OriginOffsets oo;
   oo.scene_ = &scene;
@@ -336,9 +332,9 @@ OriginOffsets build_origin_offsets(const Scene& scene, const Bvhf& bvh, Hemisphe
     return f;
   };
 
-  tbb::enumerable_thread_specific<std::vector<std::uint32_t>> stacks;
+  tbb::enumerable_thread_specific<NodeStack<float>> stacks;
   auto build_range = [&](std::size_t b, std::size_t e) {
-    std::vector<std::uint32_t>& stack = stacks.local();
+    NodeStack<float>& stack = stacks.local();
     for (std::size_t i = b; i < e; ++i) {
       const auto [g, p] = ids[i];
       const Geometry& geo = scene.geometry(g);

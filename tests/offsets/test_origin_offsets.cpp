@@ -132,7 +132,7 @@ TEST(OriginOffsets, HardCaseCorpusLosesNoHit) {
     std::unique_ptr<oracle::Oracle<float>> orc;
     if (c.scene.triangle_count() <= 3000) orc = std::make_unique<oracle::Oracle<float>>(c.scene);
     for (HemisphereSet kind : kAllHemisphereSets) {
-      const OriginOffsets oo = build_origin_offsets(c.scene, accel.bvh(), kind);
+      const OriginOffsets oo = build_origin_offsets(c.scene, accel.wide(), kind);
       check_scene(accel, oo, starts, orc.get(), tally,
                   c.family + "/" + c.name + " set " + std::string(hemisphere_set_name(kind)));
       if (HasFatalFailure()) return;
@@ -153,7 +153,7 @@ TEST(OriginOffsets, RandomScenesLoseNoHit) {
     const oracle::Oracle<float> orc(c.scene);
     const std::vector<Start> starts = surface_rays(c.scene, 48, seed * 7);
     for (HemisphereSet kind : kAllHemisphereSets) {
-      const OriginOffsets oo = build_origin_offsets(c.scene, accel.bvh(), kind);
+      const OriginOffsets oo = build_origin_offsets(c.scene, accel.wide(), kind);
       check_scene(accel, oo, starts, &orc, tally,
                   "random " + std::to_string(seed) + " set " + std::string(hemisphere_set_name(kind)));
       if (HasFatalFailure()) return;
@@ -170,7 +170,7 @@ TEST(OriginOffsets, OrganicAndSoupScenesLoseNoHitAndMostRaysMove) {
     auto w = make_world(meshes);
     const std::vector<Start> starts = surface_rays(w->scene, 300, 5);
     for (HemisphereSet kind : kAllHemisphereSets) {
-      const OriginOffsets oo = build_origin_offsets(w->scene, w->accel.bvh(), kind);
+      const OriginOffsets oo = build_origin_offsets(w->scene, w->accel.wide(), kind);
       Tally tally;
       check_scene(w->accel, oo, starts, nullptr, tally, meshes[0].name + " " + std::string(hemisphere_set_name(kind)));
       if (HasFatalFailure()) return;
@@ -195,7 +195,7 @@ TEST(OriginOffsets, RadiusIsZeroWhereFacesTouchOrCoincide) {
   {
     auto w = make_world(gen::stacked_plates(3, 1.0, 0.25));
     for (HemisphereSet kind : kAllHemisphereSets) {
-      const OriginOffsets oo = build_origin_offsets(w->scene, w->accel.bvh(), kind);
+      const OriginOffsets oo = build_origin_offsets(w->scene, w->accel.wide(), kind);
       std::size_t shared = 0, outer = 0;
       for (std::uint32_t g = 0; g < 3; ++g) {
         const Geometry& geo = w->scene.geometry(g);
@@ -221,14 +221,14 @@ TEST(OriginOffsets, RadiusIsZeroWhereFacesTouchOrCoincide) {
   {
     auto w = make_world({gen::duplicated(gen::box({0, 0, 0}, {1, 2, 3}), 2, true)});
     for (HemisphereSet kind : kAllHemisphereSets) {
-      const OriginOffsets oo = build_origin_offsets(w->scene, w->accel.bvh(), kind);
+      const OriginOffsets oo = build_origin_offsets(w->scene, w->accel.wide(), kind);
       for (std::uint32_t p = 0; p < w->scene.geometry(0).triangles.size(); ++p) expect_all_zero(oo, 0, p, "duplicate");
     }
   }
   // A box standing on a larger one: its bottom face covers the centroids of the big top face.
   {
     auto w = make_world({gen::box({0, 0, 0}, {4, 4, 1}, "base"), gen::box({1, 1, 1}, {3, 3, 2}, "top")});
-    const OriginOffsets oo = build_origin_offsets(w->scene, w->accel.bvh(), HemisphereSet::center);
+    const OriginOffsets oo = build_origin_offsets(w->scene, w->accel.wide(), HemisphereSet::center);
     const Geometry& base = w->scene.geometry(0);
     std::size_t covered = 0;
     for (std::uint32_t p = 0; p < base.triangles.size(); ++p) {
@@ -247,12 +247,12 @@ TEST(OriginOffsets, RadiusIsZeroWhereFacesTouchOrCoincide) {
                     {{0, 1, 2}, {3, 4, 5}}};
     gen::Mesh tet{"tet", {{1, 1, 0}, {0, 0, 2}, {2, 0, 2}, {1, 2, 2}}, {{0, 2, 1}, {0, 3, 2}, {0, 1, 3}, {1, 2, 3}}};
     auto w = make_world({floor, tet});
-    const OriginOffsets oo = build_origin_offsets(w->scene, w->accel.bvh(), HemisphereSet::center);
+    const OriginOffsets oo = build_origin_offsets(w->scene, w->accel.wide(), HemisphereSet::center);
     expect_all_zero(oo, 0, 0, "apex at the centroid");
     EXPECT_GT(oo.hemispheres(0, 1, 0)[0].radius, 0.2f);
     EXPECT_GT(oo.hemispheres(0, 1, 1)[0].radius, 0.2f);
     // Vertex set: the floor's corner (0,0,0) is 2 below the tet's vertex (0,0,2).
-    const OriginOffsets ov = build_origin_offsets(w->scene, w->accel.bvh(), HemisphereSet::vertex);
+    const OriginOffsets ov = build_origin_offsets(w->scene, w->accel.wide(), HemisphereSet::vertex);
     EXPECT_GT(ov.hemispheres(0, 0, 0)[0].radius, 0.5f);
     EXPECT_LT(ov.hemispheres(0, 0, 0)[0].radius, 2.0f);
   }
@@ -260,7 +260,7 @@ TEST(OriginOffsets, RadiusIsZeroWhereFacesTouchOrCoincide) {
 
 TEST(OriginOffsets, QueryEdgeCases) {
   auto w = make_world({gen::box({0, 0, 0}, {1, 1, 1})});
-  const OriginOffsets oo = build_origin_offsets(w->scene, w->accel.bvh(), HemisphereSet::center);
+  const OriginOffsets oo = build_origin_offsets(w->scene, w->accel.wide(), HemisphereSet::center);
   EXPECT_EQ(oo.memory_bytes() >= 12 * 2 * 16, true);
   const Geometry& g = w->scene.geometry(0);
   const Tri& t = g.triangles[0];
@@ -340,7 +340,7 @@ TEST(OriginOffsets, ThicknessIsIdenticalWithAndWithout) {
 TEST(OriginOffsets, ThicknessRaysActuallyMoveOnAHollowSphere) {
   // Otherwise the identity above would hold trivially.
   auto w = make_world({hollow_sphere(2)});
-  const OriginOffsets oo = build_origin_offsets(w->scene, w->accel.bvh(), HemisphereSet::center);
+  const OriginOffsets oo = build_origin_offsets(w->scene, w->accel.wide(), HemisphereSet::center);
   const Geometry& g = w->scene.geometry(0);
   std::size_t moved = 0;
   for (std::uint32_t p = 0; p < g.triangles.size(); ++p) {

@@ -73,9 +73,9 @@ struct KernelOptions {
 
 // A scene with the acceleration structures the kernels need. The float wide BVH is built with the
 // Accel (every Pierce kernel uses it), directly eight wide: no binary tree is built for it. The
-// rest is built on first use (thread-safe): the binary float BVH (origin offsets, Embree's exact
-// user geometry), the double BVHs (the *_d kernels, CSG) and Embree's scenes (embree-*, epsilon).
-// So a run of an own-BVH kernel builds no Embree scene, no double BVH and no binary tree.
+// rest is built on first use (thread-safe): the binary float BVH (Embree's exact
+// user geometry), the double wide BVH (the *_d kernels, CSG) and Embree's scenes (embree-*,
+// epsilon). So a run of an own-BVH kernel builds no Embree scene, no double BVH and no binary tree.
 class Accel {
  public:
   explicit Accel(const Scene& scene);
@@ -88,8 +88,7 @@ class Accel {
   // The binary float BVH, built on the first call.
   const Bvhf& bvh() const;
   const EmbreeAccel& embree() const;
-  // Double-precision BVHs: the binary one (CSG's box queries) and the wide one (the *_d kernels).
-  const Bvhd& bvh_double() const;
+  // The double-precision wide BVH (the *_d kernels, CSG's box queries), built on the first call.
   const WideBvhd& wide_double() const;
   // Bytes held by the structures built so far.
   std::size_t memory_bytes() const;

@@ -39,7 +39,7 @@
 #include <string_view>
 #include <vector>
 
-#include "pierce/bvh.h"
+#include "pierce/wide_bvh.h"
 #include "pierce/hit.h"
 #include "pierce/scene.h"
 
@@ -95,7 +95,7 @@ class OriginOffsets {
   double max_abs() const { return max_abs_; }
 
  private:
-  friend OriginOffsets build_origin_offsets(const Scene&, const Bvhf&, HemisphereSet, const OriginOffsetOptions&);
+  friend OriginOffsets build_origin_offsets(const Scene&, const WideBvhf&, HemisphereSet, const OriginOffsetOptions&);
   const Scene* scene_ = nullptr;
   HemisphereSet kind_ = HemisphereSet::center;
   int per_side_ = 1;
@@ -111,9 +111,9 @@ class OriginOffsets {
 };
 
 // Hemispheres of `kind` on both sides of every triangle of `scene`, radii found with a
-// closest-point traversal of `bvh` (the float BVH built from the same scene, e.g.
-// Accel::bvh()). Degenerate triangles get radius 0. The scene must outlive the result.
-OriginOffsets build_origin_offsets(const Scene& scene, const Bvhf& bvh, HemisphereSet kind,
+// closest-point traversal of `bvh` (the float wide BVH built from the same scene, e.g.
+// Accel::wide()). Degenerate triangles get radius 0. The scene must outlive the result.
+OriginOffsets build_origin_offsets(const Scene& scene, const WideBvhf& bvh, HemisphereSet kind,
                                    const OriginOffsetOptions& opts = {});
 
 // For a ray starting on triangle (geom, prim) at `origin`: the largest t such that no hit

@@ -1,6 +1,7 @@
 #pragma once
-// The one traversal of the wide BVH that every Pierce kernel runs (in the manner of
-// madmann91/bvh v2's traverse(leaf_fn, inner_fn)). What differs between kernels is a policy:
+// The one traversal of the wide BVH that every Pierce kernel runs, and the proximity queries
+// (proximity.h) too, in the manner of madmann91/bvh v2's traverse(leaf_fn, inner_fn). What differs
+// between kernels is a policy:
 //  - the container of untraversed nodes: NodeStack (depth first, near child first) or NodeHeap
 //    (front to back by entry distance, Wald et al. §4);
 //  - the active range [lo(), hi()] for box and triangle tests, and cull_bound(): a node entered
@@ -26,89 +27,13 @@
 #include <vector>
 
 #include "pierce/counters.h"
+#include "pierce/node_stack.h"
 #include "pierce/prefetch_mode.h"
 #include "pierce/simd/simd_level.h"
 #include "pierce/simd/wide_ops.h"
 #include "pierce/wide_bvh.h"
 
 namespace pierce {
-
-// Depth-first pending nodes, in a buffer sized once from the BVH's depth (WideBvh::stack_capacity):
-// no allocation and no capacity check per push (but for a kAnyOrder policy's, see
-// FifoCursor::ensure_room). The traversal works on the raw buffer.
-template <typename T>
-class NodeStack {
- public:
-  static constexpr bool kOrdered = false;
-  // Room for n entries, plus a node's worth: the SIMD push writes eight entries whatever passed.
-  void reserve(std::size_t n) {
-    if (v_.size() < n + kWideArity) v_.resize(n + kWideArity);
-  }
-  // Entries the buffer holds (what reserve() asked for, plus a node's worth).
-  std::size_t capacity() const { return v_.size(); }
-  void clear() { size_ = 0; }
-  bool empty() const { return size_ == 0; }
-  void push(NodeEntry<T> e) { v_[size_++] = e; }
-  NodeEntry<T> pop() { return v_[--size_]; }
-  T next_tn() const { return v_[size_ - 1].tn; }
-  T min_tn() const {
-    T m = std::numeric_limits<T>::infinity();
-    for (std::size_t i = 0; i < size_; ++i) m = v_[i].tn < m ? v_[i].tn : m;
-    return m;
-  }
-  NodeEntry<T>* data() { return v_.data(); }
-  std::size_t size() const { return size_; }
-  void set_size(std::size_t n) { size_ = n; }
-
- private:
-  std::vector<NodeEntry<T>> v_;
-  std::size_t size_ = 0;
-};
-
-// Pending nodes ordered by entry distance (a binary min-heap in a vector that keeps its capacity).
-template <typename T>
-class NodeHeap {
- public:
-  static constexpr bool kOrdered = true;
-  void reserve(std::size_t n) { v_.reserve(n); }
-  void clear() { v_.clear(); }
-  bool empty() const { return v_.empty(); }
-  void push(NodeEntry<T> e) {
-    std::size_t i = v_.size();
-    v_.push_back(e);
-    while (i > 0) {
-      const std::size_t parent = (i - 1) / 2;
-      if (!(e.tn < v_[parent].tn)) break;
-      v_[i] = v_[parent];
-      i = parent;
-    }
-    v_[i] = e;
-  }
-  NodeEntry<T> pop() {
-    const NodeEntry<T> top = v_.front();
-    const NodeEntry<T> last = v_.back();
-    v_.pop_back();
-    const std::size_t n = v_.size();
-    if (n == 0) return top;
-    std::size_t i = 0;
-    for (;;) {
-      std::size_t c = 2 * i + 1;
-      if (c >= n) break;
-      if (c + 1 < n && v_[c + 1].tn < v_[c].tn) ++c;
-      if (!(v_[c].tn < last.tn)) break;
-      v_[i] = v_[c];
-      i = c;
-    }
-    v_[i] = last;
-    return top;
-  }
-  T next_tn() const { return v_.front().tn; }
-  T min_tn() const { return v_.empty() ? std::numeric_limits<T>::infinity() : v_.front().tn; }
-  std::size_t size() const { return v_.size(); }
-
- private:
-  std::vector<NodeEntry<T>> v_;
-};
 
 template <typename T>
 struct TraversalPolicy {
@@ -140,6 +65,7 @@ inline void seed(const WideBvh<T>& bvh, const TraversalRay<T>& r, T lo, T hi, Pe
 }
 
 // Pieces of the loop shared by both container kinds.
+// A ray's leaf test: the exact triangle test of every triangle of the leaf's blocks.
 template <class Ops, typename T, class Policy, class C>
 inline void detail_leaf(const Ops& ops, const TriBlock<T>* blocks, NodeRef ref, const TraversalRay<T>& r, Policy& p,
                         C& c) {
@@ -166,6 +92,17 @@ inline void detail_leaf(const Ops& ops, const TriBlock<T>* blocks, NodeRef ref, 
       p.hit(blk, l, th);
     }
   }
+}
+
+// The query of a proximity query (proximity.h), in place of the ray: its leaf test is the
+// policy's, leaf(block) for each block of the leaf.
+struct ProximityQuery {};
+template <class Ops, typename T, class Policy, class C>
+inline void detail_leaf(const Ops& /*ops*/, const TriBlock<T>* blocks, NodeRef ref, ProximityQuery /*query*/, Policy& p,
+                        C& c) {
+  c.leaf_visits += 1;
+  const std::uint32_t first = leaf_first_block(ref), end = first + leaf_block_count(ref);
+  for (std::uint32_t b = first; b < end; ++b) p.leaf(blocks[b]);
 }
 
 template <typename T, class Policy>
@@ -321,11 +258,12 @@ HeapCursor<T> cursor_for(NodeHeap<T>& h) {
   return HeapCursor<T>(h);
 }
 
-// The traversal loop with the node and leaf tests of `Ops`. Returns true when every pending node
-// is done, false when the policy suspended it (the next node is back on `container`).
-template <class Ops, typename T, class Container, class Policy, class C>
-inline bool traverse_with(const Ops& ops, const WideBvh<T>& bvh, const TraversalRay<T>& r, Container& container,
-                          Policy& p, C& c) {
+// The traversal loop with the node tests of `Ops` and the leaf test of `query`: a ray's exact
+// triangle test (TraversalRay), or the policy's own (ProximityQuery). Returns true when every
+// pending node is done, false when the policy suspended it (the next node is back on `container`).
+template <class Ops, typename T, class Query, class Container, class Policy, class C>
+inline bool traverse_with(const Ops& ops, const WideBvh<T>& bvh, const Query& query, Container& container, Policy& p,
+                          C& c) {
   const WideNode<T>* const nodes = bvh.nodes.data();
   const TriBlock<T>* const blocks = bvh.blocks.data();
   auto pending = cursor_for<Policy>(container);
@@ -357,7 +295,7 @@ inline bool traverse_with(const Ops& ops, const WideBvh<T>& bvh, const Traversal
     p.node(cur.ref, cur.tn);
 
     if (is_leaf(cur.ref)) {
-      detail_leaf<Ops>(ops, blocks, cur.ref, r, p, c);
+      detail_leaf<Ops>(ops, blocks, cur.ref, query, p, c);
       continue;
     }
     const WideNode<T>& node = nodes[cur.ref];

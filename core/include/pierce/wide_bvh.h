@@ -77,6 +77,10 @@ struct alignas(64) TriBlock {
     const SumOrder& so = sum[lane];
     return corner(so.o[0] == i ? 0 : (so.o[1] == i ? 1 : 2), lane);
   }
+  // Lane `lane`'s triangle: the input's corners in the input's order, and its ids.
+  Triangle<T> triangle(int lane) const {
+    return {input_corner(0, lane), input_corner(1, lane), input_corner(2, lane), geom[lane], prim[lane]};
+  }
 };
 
 template <typename T>

@@ -33,52 +33,50 @@ double box_dist2(const BBoxd& b, Vec3d p) {
   }
   return d;
 }
-}  // namespace
 
-ClosestPoint closest_point(const Bvhd& bvh, Vec3d q, double max_dist2, std::span<const std::uint32_t> exclude,
-                           std::vector<std::uint32_t>& stack) {
+// The nearest triangle so far bounds the search: a box farther than it is not entered.
+struct Closest : ProximityPolicy<double> {
+  Vec3d q;
+  std::span<const std::uint32_t> exclude;
   ClosestPoint best;
-  best.dist2 = max_dist2;
-  if (bvh.empty()) return best;
-  stack.clear();
-  stack.push_back(0);
-  while (!stack.empty()) {
-    const BvhNode<double>& n = bvh.nodes[stack.back()];
-    stack.pop_back();
-    if (box_dist2(n.box, q) > best.dist2) continue;
-    if (!n.is_leaf()) {
-      const std::uint32_t a = n.first, b = n.first + 1;
-      const double da = box_dist2(bvh.nodes[a].box, q), db = box_dist2(bvh.nodes[b].box, q);
-      // Push the farther child first so the nearer one is searched first.
-      if (da <= db) {
-        if (db <= best.dist2) stack.push_back(b);
-        if (da <= best.dist2) stack.push_back(a);
-      } else {
-        if (da <= best.dist2) stack.push_back(a);
-        if (db <= best.dist2) stack.push_back(b);
-      }
-      continue;
-    }
-    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
-      const Triangle<double>& t = bvh.tris[i];
-      if (std::find(exclude.begin(), exclude.end(), t.prim) != exclude.end()) continue;
-      const Vec3d c = closest_point_on_triangle(q, t.v0, t.v1, t.v2);
+  double hi() const { return best.dist2; }
+  double cull_bound() const { return best.dist2; }
+  void leaf(const TriBlock<double>& b) {
+    for (std::uint32_t m = b.valid; m != 0; m &= m - 1) {
+      const int l = __builtin_ctz(m);
+      const std::uint32_t geom = b.geom[l], prim = b.prim[l];
+      if (std::find(exclude.begin(), exclude.end(), prim) != exclude.end()) continue;
+      const Vec3d c = closest_point_on_triangle(q, b.input_corner(0, l), b.input_corner(1, l), b.input_corner(2, l));
       const Vec3d d = c - q;
       const double d2 = dot(d, d);
       // Among equally near triangles the lowest (geom, prim) wins, not the first the walk meets:
       // their closest points can differ in the last bits, and the answer must not depend on the
       // BVH's layout (the builder, the thread count).
-      const bool first_of_tie = d2 == best.dist2 && (!best.found() || t.geom < best.geom ||
-                                                     (t.geom == best.geom && t.prim < best.prim));
+      const bool first_of_tie =
+          d2 == best.dist2 && (!best.found() || geom < best.geom || (geom == best.geom && prim < best.prim));
       if (d2 < best.dist2 || first_of_tie) {
         best.dist2 = d2;
         best.point = c;
-        best.geom = t.geom;
-        best.prim = t.prim;
+        best.geom = geom;
+        best.prim = prim;
       }
     }
   }
-  return best;
+};
+}  // namespace
+
+ClosestPoint closest_point(const WideBvhd& bvh, Vec3d q, double max_dist2, std::span<const std::uint32_t> exclude,
+                           NodeStack<double>& stack) {
+  Closest p;
+  p.q = q;
+  p.exclude = exclude;
+  p.best.dist2 = max_dist2;
+  auto by_distance = [&](const BBoxd& box, double& key) {
+    key = box_dist2(box, q);
+    return true;
+  };
+  traverse_proximity(bvh, stack, by_distance, p);
+  return p.best;
 }
 
 }  // namespace pierce::analysis

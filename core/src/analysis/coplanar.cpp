@@ -9,7 +9,7 @@
 #include "pierce/analysis/bvh_query.h"
 #include "pierce/analysis/exact_predicates.h"
 #include "pierce/analysis/polygon2d.h"
-#include "pierce/bvh_builder.h"
+#include "pierce/wide_bvh.h"
 #include "pierce/parallel_for_items.h"
 
 namespace pierce::analysis {
@@ -98,15 +98,20 @@ CoplanarReport find_coplanar_overlaps(const Scene& scene, const CoplanarOptions&
     throw std::invalid_argument("coplanar overlaps: tolerance must be finite and >= 0");
   CoplanarReport rep;
   rep.tolerance = opts.tolerance;
-  const Bvhd bvh = build_bvh<double>(scene);
-  const std::size_t total = bvh.tris.size();
+  const WideBvhd bvh = build_wide_bvh<double>(scene);
+  // Its (non-degenerate) triangles, each tested against those whose boxes overlap its own.
+  std::vector<Triangle<double>> tris;
+  tris.reserve(bvh.triangles);
+  for (const TriBlock<double>& b : bvh.blocks)
+    for (std::uint32_t m = b.valid; m != 0; m &= m - 1) tris.push_back(b.triangle(__builtin_ctz(m)));
+  const std::size_t total = tris.size();
   struct Local {
     std::vector<CoplanarPair> pairs;
-    std::vector<std::uint32_t> stack;
+    NodeStack<double> stack;
   };
   tbb::enumerable_thread_specific<Local> locals;
   const bool completed = parallel_for_items(total, 256, locals, progress, [&](Local& L, std::size_t i) {
-    const Triangle<double>& ta = bvh.tris[i];
+    const Triangle<double>& ta = tris[i];
     const TriGeom a = tri_geom(ta);
     if (a.n == Vec3d{}) return;
     BBoxd box;

@@ -71,7 +71,7 @@ bool PointClassifier::on_grazed_surface(Vec3d point) {
   box.extend(point - r);
   box.extend(point + r);
   near_.clear();
-  for_each_overlapping(accel_->bvh_double(), box, stack_, [&](const Triangle<double>& t) {
+  for_each_overlapping(accel_->wide_double(), box, stack_, [&](const Triangle<double>& t) {
     if (std::find(near_.begin(), near_.end(), t.geom) != near_.end()) return;
     const Vec3d c = closest_point_on_triangle(point, t.v0, t.v1, t.v2);
     if (length(c - point) <= tolerance_) near_.push_back(t.geom);

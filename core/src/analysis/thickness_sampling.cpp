@@ -8,7 +8,7 @@
 
 #include "pierce/analysis/bvh_query.h"
 #include "pierce/analysis/mesh_topology.h"
-#include "pierce/bvh_builder.h"
+#include "pierce/wide_bvh.h"
 #include "pierce/huge_page_allocator.h"
 #include "pierce/parallel_for_items.h"
 #include "thickness_internal.h"
@@ -326,7 +326,7 @@ SampleSet build_point_samples(const Scene& scene, const ThicknessOptions& opts, 
   SampleSet set;
   res.per = SampleAt::face;
   // One closest-point BVH per solid asked for.
-  std::vector<Bvhd> bvh;
+  std::vector<WideBvhd> bvh;
   std::vector<std::uint32_t> bvh_of(scene.geometries().size(), kInvalidId);
   std::vector<std::vector<std::uint32_t>> welds(scene.geometries().size());
   std::vector<std::uint8_t> closed(scene.geometries().size(), 0);
@@ -336,7 +336,7 @@ SampleSet build_point_samples(const Scene& scene, const ThicknessOptions& opts, 
     Scene one;
     one.add_mesh(scene.geometry(g).vertices, scene.geometry(g).triangles);
     bvh_of[g] = std::uint32_t(bvh.size());
-    bvh.push_back(build_bvh<double>(one));
+    bvh.push_back(build_wide_bvh<double>(one));
     welds[g] = weld_by_position(scene.geometry(g).vertices);
     closed[g] = is_cad(opts, g) && closed_mesh(scene.geometry(g), welds[g]);
   }
@@ -355,8 +355,8 @@ SampleSet build_point_samples(const Scene& scene, const ThicknessOptions& opts, 
   std::vector<Sample> samples(n);
   std::vector<CadSample> cads(n);  // of the CAD points
   std::vector<std::uint8_t> has_sample(n, 0);
-  tbb::enumerable_thread_specific<std::vector<std::uint32_t>> stacks;
-  parallel_for_items(n, 64, stacks, {}, [&](std::vector<std::uint32_t>& stack, std::size_t i) {
+  tbb::enumerable_thread_specific<NodeStack<double>> stacks;
+  parallel_for_items(n, 64, stacks, {}, [&](NodeStack<double>& stack, std::size_t i) {
     const std::uint32_t g = solids[i];
     const Geometry& geo = scene.geometry(g);
     const ClosestPoint cp =

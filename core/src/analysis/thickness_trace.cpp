@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "pierce/analysis/bvh_query.h"
-#include "pierce/bvh_builder.h"
+#include "pierce/wide_bvh.h"
 #include "pierce/parallel_for_items.h"
 #include "thickness_internal.h"
 
@@ -110,7 +110,7 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
                    const Progress& progress) {
   const Scene& scene = accel.scene();
   // Sphere method: one closest-point BVH per sampled solid (queries stay inside the solid).
-  std::vector<Bvhd> solid_bvh;
+  std::vector<WideBvhd> solid_bvh;
   std::vector<std::uint32_t> bvh_of(scene.geometries().size(), kInvalidId);
   if (opts.method == ThicknessMethod::sphere) {
     for (std::uint32_t g : set.solids) {
@@ -118,13 +118,13 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
       Scene one;
       one.add_mesh(scene.geometry(g).vertices, scene.geometry(g).triangles);
       bvh_of[g] = std::uint32_t(solid_bvh.size());
-      solid_bvh.push_back(build_bvh<double>(one));
+      solid_bvh.push_back(build_wide_bvh<double>(one));
     }
   }
 
   const double tie = tie_distance(scene, opts.tie_tolerance_rel);
   std::optional<OriginOffsets> offsets;
-  if (uses_origin_offsets(opts)) offsets = build_origin_offsets(scene, accel.bvh(), opts.offset_set);
+  if (uses_origin_offsets(opts)) offsets = build_origin_offsets(scene, accel.wide(), opts.offset_set);
   // Where a sample starts and along which inward direction (a mesh sample: its result row).
   struct Start {
     Vec3d point, inward;
@@ -149,7 +149,7 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
 
   struct Worker {
     HitIterator it;
-    std::vector<std::uint32_t> stack;
+    NodeStack<double> stack;
     std::vector<std::pair<double, double>> lens;
   };
   tbb::enumerable_thread_specific<Worker> workers([&] { return Worker{HitIterator(accel, opts.kernel, kopts), {}, {}}; });
@@ -225,7 +225,7 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
       }
       case ThicknessMethod::sphere: {
         if (std::isnan(ray.t)) return ray;
-        const Bvhd& bvh = solid_bvh[bvh_of[s.geom]];
+        const WideBvhd& bvh = solid_bvh[bvh_of[s.geom]];
         const std::span<const std::uint32_t> exclude(set.exclude.data() + s.exclude_begin,
                                                      s.exclude_end - s.exclude_begin);
         // Shrinking ball (Ma et al. 2012): the ball touching the point with its centre on the

@@ -29,7 +29,7 @@
 
 #include "cad_faces.h"
 #include "pierce/analysis/bvh_query.h"
-#include "pierce/bvh_builder.h"
+#include "pierce/wide_bvh.h"
 #include "pierce/slab.h"
 
 namespace pierce {
@@ -151,7 +151,7 @@ struct CadSurfaces::HiddenFaces {
     std::vector<PatchPrism> prisms;
     // The prisms' boxes, each stored as a triangle spanning it (the scene BVH's builder makes node
     // boxes the exact unions of their triangles' boxes); Triangle::prim indexes `prisms`.
-    Bvhd boxes;
+    WideBvhd boxes;
     double tolerance = 0;  // for OpenCASCADE's intersector
     double margin = 0;     // crossings this near the segment's ends are not reported
   };
@@ -160,7 +160,7 @@ struct CadSurfaces::HiddenFaces {
   std::unique_ptr<OfGeom[]> geoms;
   using Key = std::pair<std::uint32_t, std::uint32_t>;  // (geom, face)
   tbb::enumerable_thread_specific<std::map<Key, std::unique_ptr<IntCurvesFace_Intersector>>> intersectors;
-  tbb::enumerable_thread_specific<std::vector<std::uint32_t>> stacks;
+  tbb::enumerable_thread_specific<NodeStack<double>> stacks;
 };
 
 namespace {
@@ -490,7 +490,7 @@ void CadSurfaces::HiddenFaces::build(const CadLink& l, OfGeom& h) {
   if (spans.empty()) return;
   Scene scene;
   scene.add_mesh(std::move(corners), std::move(spans));
-  h.boxes = build_bvh<double>(scene);
+  h.boxes = build_wide_bvh<double>(scene);
 }
 
 std::optional<double> CadSurfaces::hidden_crossing(std::uint32_t geom, Vec3d org, Vec3d dir, double t_end,

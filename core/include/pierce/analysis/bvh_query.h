@@ -1,13 +1,15 @@
 #pragma once
-// Proximity queries on Pierce's double-precision BVH: closest point on the triangles to a
-// query point, and enumeration of the triangles whose boxes overlap a query box.
+// Proximity queries on Pierce's double-precision wide BVH, run on the one traversal
+// (proximity.h): closest point on the triangles to a query point, and enumeration of the
+// triangles whose boxes overlap a query box.
 #include <cstdint>
 #include <limits>
 #include <span>
 #include <vector>
 
-#include "pierce/bvh.h"
 #include "pierce/hit.h"
+#include "pierce/proximity.h"
+#include "pierce/wide_bvh.h"
 
 namespace pierce::analysis {
 
@@ -25,33 +27,36 @@ struct ClosestPoint {
 // primitives listed in `exclude` (ids of Triangle::prim; small, searched linearly). Of equally
 // near triangles, the one with the lowest (geom, prim) gives the point, whatever the BVH's layout.
 // `stack` is scratch space reused between calls.
-ClosestPoint closest_point(const Bvhd& bvh, Vec3d q, double max_dist2, std::span<const std::uint32_t> exclude,
-                           std::vector<std::uint32_t>& stack);
+ClosestPoint closest_point(const WideBvhd& bvh, Vec3d q, double max_dist2, std::span<const std::uint32_t> exclude,
+                           NodeStack<double>& stack);
 
-// Calls f(const Triangle<double>&) for every triangle in the leaves reached by descending
-// through the nodes whose box passes `enter(const BBoxd&)` (the root's included). `stack` is
-// scratch space reused between calls.
+// Calls f(const Triangle<double>&) (corners in the input's order) for every triangle in the leaves
+// reached by descending through the nodes whose box passes `enter(const BBoxd&)` (the root's
+// included). `stack` is scratch space reused between calls.
 template <typename Enter, typename F>
-void for_each_entered(const Bvhd& bvh, std::vector<std::uint32_t>& stack, Enter&& enter, F&& f) {
-  if (bvh.empty()) return;
-  stack.clear();
-  stack.push_back(0);
-  while (!stack.empty()) {
-    const BvhNode<double>& n = bvh.nodes[stack.back()];
-    stack.pop_back();
-    if (!enter(n.box)) continue;
-    if (!n.is_leaf()) {
-      stack.push_back(n.first);
-      stack.push_back(n.first + 1);
-      continue;
+void for_each_entered(const WideBvhd& bvh, NodeStack<double>& stack, Enter&& enter, F&& f) {
+  struct Each : ProximityPolicy<double> {
+    F& f;
+    explicit Each(F& fn) : f(fn) {}
+    double hi() const { return 0; }
+    double cull_bound() const { return 0; }
+    void leaf(const TriBlock<double>& b) {
+      for (std::uint32_t m = b.valid; m != 0; m &= m - 1) {
+        const int l = __builtin_ctz(m);
+        f(b.triangle(l));
+      }
     }
-    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) f(bvh.tris[i]);
-  }
+  } p{f};
+  auto entered = [&](const BBoxd& box, double& key) {
+    key = 0;  // no order: every node entered is visited
+    return bool(enter(box));
+  };
+  traverse_proximity(bvh, stack, entered, p);
 }
 
 // Calls f(const Triangle<double>&) for every triangle whose box overlaps `box` (closed test).
 template <typename F>
-void for_each_overlapping(const Bvhd& bvh, const BBoxd& box, std::vector<std::uint32_t>& stack, F&& f) {
+void for_each_overlapping(const WideBvhd& bvh, const BBoxd& box, NodeStack<double>& stack, F&& f) {
   auto overlaps = [&](const BBoxd& b) {
     return b.lo.x <= box.hi.x && b.hi.x >= box.lo.x && b.lo.y <= box.hi.y && b.hi.y >= box.lo.y &&
            b.lo.z <= box.hi.z && b.hi.z >= box.lo.z;

@@ -25,6 +25,7 @@
 #include "pierce/analysis/ray_partitions.h"
 #include "pierce/enum_names.h"
 #include "pierce/kernel.h"
+#include "pierce/node_stack.h"
 #include "pierce/scene.h"
 
 namespace pierce::analysis {
@@ -114,7 +115,8 @@ class PointClassifier {
   std::vector<CsgInterval> intervals_;
   // Per ray: the solids claiming the ray just before and just after the point (t = -+probe).
   std::array<std::vector<std::uint32_t>, 4> sides_;
-  std::vector<std::uint32_t> near_, with_, stack_;  // scratch for on_grazed_surface
+  std::vector<std::uint32_t> near_, with_;  // scratch for on_grazed_surface
+  NodeStack<double> stack_;
 };
 
 }  // namespace pierce::analysis
