@@ -104,9 +104,11 @@ double nearest_in_halfspace(const WideBvhf& bvh, const Vec3d& x, const SidePlane
     double best2;
     Nearest(const Vec3d& from, const SidePlane& plane, double s, Skip& sk, double b)
         : x(from), pl(plane), slab(s), skip(sk), best2(b) {}
-    // Keys are float: rounding to nearest is monotone, so no box nearer than best2 is skipped.
-    float hi() const { return float(best2); }
-    float cull_bound() const { return float(best2); }
+    // Keys are float: rounding to nearest is monotone, so no box nearer than best2 is skipped
+    // (proximity.h); a box at best2 is entered too. Once a triangle touches x (best2 = 0, as for a
+    // hemisphere at a vertex the neighbours share) nothing can come nearer: no box is entered.
+    float hi() const { return best2 > 0 ? float(best2) : -1.0f; }
+    float cull_bound() const { return hi(); }
     void leaf(const TriBlock<float>& b) {
       for (std::uint32_t m = b.valid; m != 0; m &= m - 1) {
         const Triangle<float> t = b.triangle(__builtin_ctz(m));
@@ -118,17 +120,20 @@ double nearest_in_halfspace(const WideBvhf& bvh, const Vec3d& x, const SidePlane
       }
     }
   } p{x, pl, slab, skip, max_dist * max_dist};
-  auto entered = [&](const BBoxf& b, float& key) {
-    Vec3d far;  // the box's corner farthest along the plane's normal: max of s over the box
-    double d2 = 0;
-    for (int a = 0; a < 3; ++a) {
-      far[a] = pl.n[a] > 0 ? double(b.hi[a]) : double(b.lo[a]);
-      const double lo = b.lo[a], hi = b.hi[a];
-      const double e = x[a] < lo ? lo - x[a] : (x[a] > hi ? x[a] - hi : 0.0);
-      d2 += e * e;
+  auto entered = [&](const WideNode<float>& n, float* key) {
+    double d2[kWideArity], top[kWideArity];
+    box_distances2(n, x, d2);
+    // Max of s over each box: at its corner farthest along the plane's normal.
+    for (int s = 0; s < kWideArity; ++s) {
+      const auto far = [&](int a) { return pl.n[a] > 0 ? double(n.hi[a][s]) : double(n.lo[a][s]); };
+      top[s] = pl.eval(Vec3d{far(0), far(1), far(2)});
     }
-    key = float(d2);
-    return pl.eval(far) >= -slab;
+    std::uint32_t above = 0;
+    for (int s = 0; s < kWideArity; ++s) {
+      key[s] = float(d2[s]);
+      above |= std::uint32_t(top[s] >= -slab) << s;
+    }
+    return above;
   };
   traverse_proximity(bvh, stack, entered, p);
   return std::sqrt(p.best2);

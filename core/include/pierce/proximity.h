@@ -2,15 +2,18 @@
 // Proximity queries on the wide BVH (closest point, the boxes a query enters, the nearest point in
 // a half-space) run on the one traversal of traverse.h, as the kernels do. What differs is the
 // policy, as for the kernels:
-//  - the node test (ProximityOps): `enter(box, key)` says whether the query enters a child box and
-//    gives it a key (a squared distance, say); the children entered are ranked by key, near first,
-//    and taken depth first from the stack, nearest first;
+//  - the node test (ProximityOps): `test(node, key)` gives each of the node's eight child boxes a
+//    key (a squared distance, say) in key[slot] and returns the slots the query enters; those
+//    with a key at most hi() are ranked by key, near first, and taken depth first from the stack,
+//    nearest first. The test sees the node's boxes as stored (structure of arrays), so a query
+//    can write it as a loop over the slots that the compiler vectorises;
 //  - hi(): a child whose key exceeds it is not entered; cull_bound() (the same value): a pending
 //    node whose key exceeds the bound as it stands when the node is popped is skipped, since the
 //    bound (the best distance so far) may have shrunk after it was pushed;
 //  - leaf(block): the leaf test, called for each triangle block of a leaf entered.
 // Keys in T: rounding to nearest is monotone, so d <= b gives fl(d) <= fl(b) and a float key never
 // skips a box that the exact key would enter.
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <type_traits>
@@ -20,23 +23,21 @@
 
 namespace pierce {
 
-// The node test of a proximity query. Enter: bool(const BBox<T>&, T& key).
-template <typename T, class Enter>
+// The node test of a proximity query. Test: std::uint32_t(const WideNode<T>&, T key[kWideArity]).
+template <typename T, class Test>
 struct ProximityOps {
-  Enter& enter;
+  Test& test;
 
   // The children entered with a key at most hi, ranked by key (ties in slot order): key[k] and
   // child[k] for rank k, bit k of the result set for each.
   std::uint32_t node_hits(const WideNode<T>& n, T /*lo*/, T hi, T* key, NodeRef* child) const {
-    const std::uint32_t valid = n.valid();
+    alignas(64) T by_slot[kWideArity];
+    const std::uint32_t entered = test(n, by_slot) & n.valid();
     int count = 0;
-    for (int s = 0; s < kWideArity; ++s) {
-      if (!(valid >> s & 1)) continue;
-      BBox<T> box;
-      box.lo = {n.lo[0][s], n.lo[1][s], n.lo[2][s]};
-      box.hi = {n.hi[0][s], n.hi[1][s], n.hi[2][s]};
-      T k{};
-      if (!enter(static_cast<const BBox<T>&>(box), k) || !(k <= hi)) continue;
+    for (std::uint32_t m = entered; m != 0; m &= m - 1) {
+      const int s = __builtin_ctz(m);
+      const T k = by_slot[s];
+      if (!(k <= hi)) continue;
       int i = count++;
       for (; i > 0 && key[i - 1] > k; --i) key[i] = key[i - 1], child[i] = child[i - 1];
       key[i] = k, child[i] = n.child[s];
@@ -54,19 +55,33 @@ struct ProximityPolicy : TraversalPolicy<T> {
   T lo() const { return -std::numeric_limits<T>::infinity(); }
 };
 
-// Runs a proximity query over `bvh`: from the root if `enter` takes the BVH's bounds, then every
-// node it enters, nearest key first. `stack` is scratch space reused between calls.
-template <typename T, class Enter, class Policy>
-void traverse_proximity(const WideBvh<T>& bvh, NodeStack<T>& stack, Enter&& enter, Policy& p) {
-  if (bvh.empty()) return;
+// Runs a proximity query over `bvh` from the root (its children are the first boxes tested; a
+// root leaf goes straight to the leaf test), then every node the node test enters, nearest key
+// first. `stack` is scratch space reused between calls.
+template <typename T, class Test, class Policy>
+void traverse_proximity(const WideBvh<T>& bvh, NodeStack<T>& stack, Test&& test, Policy& p) {
+  if (bvh.empty() || !(T(0) <= p.hi())) return;
   stack.reserve(bvh.stack_capacity());
   stack.clear();
-  T key{};
-  if (!enter(static_cast<const BBox<T>&>(bvh.bounds), key) || !(key <= p.hi())) return;
-  stack.push({key, bvh.root});
-  const ProximityOps<T, std::remove_reference_t<Enter>> ops{enter};
+  stack.push({T(0), bvh.root});
+  const ProximityOps<T, std::remove_reference_t<Test>> ops{test};
   NoCounters counters;
   traverse_with(ops, bvh, ProximityQuery{}, stack, p, counters);
+}
+
+// Squared distance from q to each child box of n, by slot (+inf for an empty slot). Branch free
+// over the slots, so the compiler vectorises it: max(lo - q, q - hi, 0) is the distance along an
+// axis outside [lo, hi] and 0 inside.
+template <typename T, typename P>
+inline void box_distances2(const WideNode<T>& n, const Vec3<P>& q, P* d2) {
+  for (int s = 0; s < kWideArity; ++s) {
+    P d = 0;
+    for (int a = 0; a < 3; ++a) {
+      const P e = std::max(std::max(P(n.lo[a][s]) - q[a], q[a] - P(n.hi[a][s])), P(0));
+      d += e * e;
+    }
+    d2[s] = d;
+  }
 }
 
 }  // namespace pierce

@@ -25,15 +25,6 @@ Vec3d closest_point_on_triangle(Vec3d p, Vec3d a, Vec3d b, Vec3d c) {
 }
 
 namespace {
-double box_dist2(const BBoxd& b, Vec3d p) {
-  double d = 0;
-  for (int k = 0; k < 3; ++k) {
-    const double e = p[k] < b.lo[k] ? b.lo[k] - p[k] : (p[k] > b.hi[k] ? p[k] - b.hi[k] : 0.0);
-    d += e * e;
-  }
-  return d;
-}
-
 // The nearest triangle so far bounds the search: a box farther than it is not entered.
 struct Closest : ProximityPolicy<double> {
   Vec3d q;
@@ -71,9 +62,9 @@ ClosestPoint closest_point(const WideBvhd& bvh, Vec3d q, double max_dist2, std::
   p.q = q;
   p.exclude = exclude;
   p.best.dist2 = max_dist2;
-  auto by_distance = [&](const BBoxd& box, double& key) {
-    key = box_dist2(box, q);
-    return true;
+  auto by_distance = [&](const WideNode<double>& n, double* key) {
+    box_distances2(n, q, key);
+    return 0xFFu;
   };
   traverse_proximity(bvh, stack, by_distance, p);
   return p.best;

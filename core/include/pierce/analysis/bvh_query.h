@@ -31,8 +31,9 @@ ClosestPoint closest_point(const WideBvhd& bvh, Vec3d q, double max_dist2, std::
                            NodeStack<double>& stack);
 
 // Calls f(const Triangle<double>&) (corners in the input's order) for every triangle in the leaves
-// reached by descending through the nodes whose box passes `enter(const BBoxd&)` (the root's
-// included). `stack` is scratch space reused between calls.
+// reached by descending through the nodes whose box passes `enter(const BBoxd&)` (from the root's
+// children down; a root leaf's triangles are all given). `stack` is scratch space reused between
+// calls.
 template <typename Enter, typename F>
 void for_each_entered(const WideBvhd& bvh, NodeStack<double>& stack, Enter&& enter, F&& f) {
   struct Each : ProximityPolicy<double> {
@@ -47,9 +48,16 @@ void for_each_entered(const WideBvhd& bvh, NodeStack<double>& stack, Enter&& ent
       }
     }
   } p{f};
-  auto entered = [&](const BBoxd& box, double& key) {
-    key = 0;  // no order: every node entered is visited
-    return bool(enter(box));
+  auto entered = [&](const WideNode<double>& n, double* key) {
+    std::uint32_t mask = 0;
+    for (int s = 0; s < kWideArity; ++s) {
+      key[s] = 0;  // no order: every node entered is visited
+      BBoxd box;
+      box.lo = {n.lo[0][s], n.lo[1][s], n.lo[2][s]};
+      box.hi = {n.hi[0][s], n.hi[1][s], n.hi[2][s]};
+      if (enter(static_cast<const BBoxd&>(box))) mask |= 1u << s;
+    }
+    return mask;
   };
   traverse_proximity(bvh, stack, entered, p);
 }
