@@ -110,8 +110,12 @@ double nearest_in_halfspace(const WideBvhf& bvh, const Vec3d& x, const SidePlane
     float hi() const { return best2 > 0 ? float(best2) : -1.0f; }
     float cull_bound() const { return hi(); }
     void leaf(const TriBlock<float>& b) {
+      double box2[kBlockLanes];
+      lane_box_distances2(b, x, box2);
       for (std::uint32_t m = b.valid; m != 0; m &= m - 1) {
-        const Triangle<float> t = b.triangle(__builtin_ctz(m));
+        const int l = __builtin_ctz(m);
+        if (box2[l] > beyond_bound(best2)) continue;
+        const Triangle<float> t = b.triangle(l);
         if (skip(t.geom, t.prim)) continue;
         const Vec3d v[3] = {Vec3d(t.v0), Vec3d(t.v1), Vec3d(t.v2)};
         const double s[3] = {pl.eval(v[0]), pl.eval(v[1]), pl.eval(v[2])};

@@ -84,4 +84,26 @@ inline void box_distances2(const WideNode<T>& n, const Vec3<P>& q, P* d2) {
   }
 }
 
+// Squared distance from q to each lane's triangle box in block b (padding lanes: whatever their
+// zeroed corners give; callers look only at valid lanes). Branch free over the lanes, so the
+// compiler vectorises it: a leaf test measures a triangle only where its box is within the bound.
+template <typename T, typename P>
+inline void lane_box_distances2(const TriBlock<T>& b, const Vec3<P>& q, P* d2) {
+  for (int l = 0; l < kBlockLanes; ++l) {
+    P d = 0;
+    for (int a = 0; a < 3; ++a) {
+      const P v0 = P(b.v[0][a][l]), v1 = P(b.v[1][a][l]), v2 = P(b.v[2][a][l]);
+      const P lo = std::min(std::min(v0, v1), v2), hi = std::max(std::max(v0, v1), v2);
+      const P e = std::max(std::max(lo - q[a], q[a] - hi), P(0));
+      d += e * e;
+    }
+    d2[l] = d;
+  }
+}
+
+// The bound a leaf test compares a triangle's box distance with: a closest point at a box corner
+// can come out an ulp or two below the box's own rounded distance, so a triangle is skipped only
+// where its box lies clearly beyond.
+inline double beyond_bound(double bound2) { return bound2 * (1 + 0x1p-30); }
+
 }  // namespace pierce

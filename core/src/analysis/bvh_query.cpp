@@ -33,8 +33,11 @@ struct Closest : ProximityPolicy<double> {
   double hi() const { return best.dist2; }
   double cull_bound() const { return best.dist2; }
   void leaf(const TriBlock<double>& b) {
+    double box2[kBlockLanes];
+    lane_box_distances2(b, q, box2);
     for (std::uint32_t m = b.valid; m != 0; m &= m - 1) {
       const int l = __builtin_ctz(m);
+      if (box2[l] > beyond_bound(best.dist2)) continue;
       const std::uint32_t geom = b.geom[l], prim = b.prim[l];
       if (std::find(exclude.begin(), exclude.end(), prim) != exclude.end()) continue;
       const Vec3d c = closest_point_on_triangle(q, b.input_corner(0, l), b.input_corner(1, l), b.input_corner(2, l));
