@@ -133,7 +133,7 @@ void EmbreeFilterKernel::begin(const Ray& ray, std::size_t) {
   if (!setup(ray)) return;
   q_.hits = &hits_;
   trace(q_.ray.tmin, q_.ray.tmax);
-  std::sort(hits_.begin(), hits_.end(), q_.order);
+  sort_hits(hits_.begin(), hits_.end(), q_.order);
   // Embree may offer a primitive twice (e.g. spatial-split builds): keep one.
   hits_.erase(std::unique(hits_.begin(), hits_.end(), same_hit), hits_.end());
 }

@@ -1,6 +1,7 @@
 // The max-hits hint: N-closest kernels (nodecull, embree-nodecull) fetch hits in batches of N but
 // continuing next() past N still yields the complete sequence; every kernel accepts the hint; and
 // collect_hits with max_hits returns exactly the first N.
+#include <algorithm>
 #include <random>
 
 #include "test_util.h"
@@ -76,6 +77,32 @@ TEST(MaxHits, QueueFirstPassInEitherOrder) {
         EXPECT_GT(breadth_first_rays[1], 0u) << "at hint 1000 it defers nothing: breadth first";
       }
     }
+  }
+}
+
+// `queue`'s gathering pass hands a caller that wants N hits (HitIterator::collect) every hit, the
+// first N of them in order and the rest after them (sort_first_hits): rays of up to 70 hits here,
+// against hints below and above 16 (the insertion and the partial_sort paths).
+TEST(MaxHits, QueueGatheringPassSortsTheHitsAskedFor) {
+  const Fixture f = make_fixture();
+  for (TieOrder tie : kTieOrders) {
+    SCOPED_TRACE(tie_name(tie));
+    QueueKernel<float> k(f.world->accel.wide(), {tie}, QueueFirstPass::breadth_first);
+    const HitOrder order{tie};
+    for (std::size_t n : {std::size_t(1), std::size_t(5), std::size_t(15), std::size_t(20), std::size_t(1000)})
+      for (const Ray& r : f.rays) {
+        const auto want = reference_hits(f.world->scene, r, {tie});
+        std::vector<Hit> got{Hit{}};  // begin_into appends
+        ASSERT_TRUE(k.begin_into(r, n, got)) << "breadth first, the pass gathers";
+        got.erase(got.begin());
+        ASSERT_EQ(got.size(), want.size()) << "hint " << n << " " << str(r);
+        const std::size_t sorted = std::min(n, want.size());
+        const std::vector<Hit> front(got.begin(), got.begin() + std::ptrdiff_t(sorted));
+        EXPECT_TRUE(same_hits({want.begin(), want.begin() + std::ptrdiff_t(sorted)}, front))
+            << "the first " << n << " in order; hint " << n << " " << str(r);
+        std::sort(got.begin(), got.end(), order);
+        EXPECT_TRUE(same_hits(want, got)) << "and every other hit after them; hint " << n << " " << str(r);
+      }
   }
 }
 

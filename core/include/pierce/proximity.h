@@ -69,15 +69,21 @@ void traverse_proximity(const WideBvh<T>& bvh, NodeStack<T>& stack, Test&& test,
   traverse_with(ops, bvh, ProximityQuery{}, stack, p, counters);
 }
 
+// How far x lies outside [lo, hi] (0 inside): the per-axis gap of a point-to-box distance, branch
+// free, for the node's slots and a block's lanes alike.
+template <typename P>
+inline P axis_gap(P x, P lo, P hi) {
+  return std::max(std::max(lo - x, x - hi), P(0));
+}
+
 // Squared distance from q to each child box of n, by slot (+inf for an empty slot). Branch free
-// over the slots, so the compiler vectorises it: max(lo - q, q - hi, 0) is the distance along an
-// axis outside [lo, hi] and 0 inside.
+// over the slots, so the compiler vectorises it.
 template <typename T, typename P>
 inline void box_distances2(const WideNode<T>& n, const Vec3<P>& q, P* d2) {
   for (int s = 0; s < kWideArity; ++s) {
     P d = 0;
     for (int a = 0; a < 3; ++a) {
-      const P e = std::max(std::max(P(n.lo[a][s]) - q[a], q[a] - P(n.hi[a][s])), P(0));
+      const P e = axis_gap(q[a], P(n.lo[a][s]), P(n.hi[a][s]));
       d += e * e;
     }
     d2[s] = d;
@@ -93,8 +99,7 @@ inline void lane_box_distances2(const TriBlock<T>& b, const Vec3<P>& q, P* d2) {
     P d = 0;
     for (int a = 0; a < 3; ++a) {
       const P v0 = P(b.v[0][a][l]), v1 = P(b.v[1][a][l]), v2 = P(b.v[2][a][l]);
-      const P lo = std::min(std::min(v0, v1), v2), hi = std::max(std::max(v0, v1), v2);
-      const P e = std::max(std::max(lo - q[a], q[a] - hi), P(0));
+      const P e = axis_gap(q[a], std::min(std::min(v0, v1), v2), std::max(std::max(v0, v1), v2));
       d += e * e;
     }
     d2[l] = d;

@@ -16,7 +16,7 @@
 // node on the heap (a node entered at exactly its t may hold a hit that ranks first).
 //
 // The first pass may instead be `filter`'s (GatherInRange: breadth first, FifoCursor, every hit in
-// range, sorted once, nothing deferred). Near to far pays where the bound closes early (N hits
+// range, nothing deferred, the first N sorted). Near to far pays where the bound closes early (N hits
 // held), since the nodes beyond it are then deferred; where it closes late, or never (a ray with
 // fewer hits than N), nearly every node in range is traversed whatever the order, and breadth
 // first hides the latency of each node behind the others. Which rays are which is not known in
@@ -45,32 +45,37 @@ class QueueKernel : public WideKernel<T, C> {
   explicit QueueKernel(const WideBvh<T>& bvh, HitOrder order = {},
                        QueueFirstPass first_pass = QueueFirstPass::adaptive)
       : Base(bvh, order), first_pass_(first_pass) {
+    gathering_ = first_pass == QueueFirstPass::breadth_first;
+    next_probe_ = first_pass == QueueFirstPass::adaptive ? probe_every_ : kNever;
     hits_.reserve(16);
     deferred_.reserve(4 * bvh.stack_capacity());
   }
 
-  void begin(const Ray& ray, std::size_t max_hits = 0) { begin_into(ray, max_hits, hits_); }
+  void begin(const Ray& ray, std::size_t max_hits = 0) {
+    // A gathering pass sorts only the first max_hits of hits_: next() sorts the rest if it gets there.
+    const bool gathered = begin_into(ray, max_hits, hits_);
+    unsorted_from_ = gathered && max_hits != 0 ? max_hits : kAllSorted;
+  }
 
-  // begin(). A gathering first pass appends every hit to `out`, sorted, and returns true (for
-  // HitIterator::collect: no copy through next()); a depth-first one holds its hits for next()
-  // and returns false.
+  // begin(). A gathering first pass appends every hit to `out` and returns true (for
+  // HitIterator::collect: no copy through next()): the first max_hits of them in order (all
+  // without a hint), the rest after them in no order, since the caller asked for max_hits. A
+  // depth-first pass holds its hits for next() and returns false.
   bool begin_into(const Ray& ray, std::size_t max_hits, std::vector<Hit>& out) {
     this->prepare(ray);
     hits_.clear();
     pos_ = 0;
     deferred_.clear();
-    const bool breadth = breadth_first();
-    ++rays_;
-    if (breadth) {
-      // `filter`'s pass: every hit in range, sorted once, nothing deferred. It runs where culling
-      // saves little, and breadth first the bound would close late anyway.
-      const std::size_t first = out.size();
-      this->gather_sorted(out);
-      could_cull_ |= out.size() - first >= (max_hits == 0 ? 1 : max_hits);
+    // While it gathers, this test is all a ray pays over `filter`: whether to probe is decided
+    // once per probe interval (begin_otherwise()), not per ray.
+    if (gathering_ && ++rays_ != next_probe_) [[likely]] {
+      // `filter`'s pass: every hit in range, nothing deferred. It runs where culling saves little,
+      // and breadth first the bound would close late anyway. Unlike `filter`, it sorts only the
+      // max_hits hits the caller wants: a ray with many more (hairball) is not sorted in full.
+      could_cull_ |= this->gather_sorted(out, max_hits) >= std::max<std::size_t>(max_hits, 1);
       return true;
     }
-    descend_first(max_hits);
-    return false;
+    return begin_otherwise(max_hits, out);
   }
 
   // Whether the next begin() runs its first pass breadth first: as the constructor fixed it, or
@@ -82,18 +87,16 @@ class QueueKernel : public WideKernel<T, C> {
   // runs only once a gathered ray since the last one held as many hits as the bound's depth: a ray
   // with fewer closes no bound, so depth first it would defer nothing, and where no ray holds that
   // many (CGAL's meshes and blob at N = 15) a probe could only cost.
-  bool breadth_first() const {
-    if (first_pass_ == QueueFirstPass::adaptive) {
-      const bool probe_due = (rays_ & (probe_every_ - 1)) == probe_every_ - 1;
-      return deferred_per_step_ < kBreadthFirstBelow && !(could_cull_ && probe_due);
-    }
-    return first_pass_ == QueueFirstPass::breadth_first;
-  }
+  bool breadth_first() const { return gathering_ && !(rays_ + 1 == next_probe_ && could_cull_); }
 
   bool next(Hit& out) {
     // Nothing deferred (always after a gathering pass): every hit left is held, in order, and no
     // pass will run again, so the bound no longer matters.
     if (deferred_.empty()) {
+      if (pos_ == unsorted_from_) {
+        sort_hits(hits_.begin() + std::ptrdiff_t(pos_), hits_.end(), this->order_);
+        unsorted_from_ = kAllSorted;
+      }
       if (pos_ >= hits_.size()) return false;
       out = hits_[pos_++];
       return true;
@@ -113,13 +116,28 @@ class QueueKernel : public WideKernel<T, C> {
   }
 
  private:
-  // A depth-first first pass (begin_into), out of line: the gathering pass, which most rays take
-  // where culling saves little, then stays small enough to inline into HitIterator::collect, as
-  // `filter`'s does (the two calls cost `queue` about 1.5 % of its instructions against `filter`'s
-  // on elephant at N = 5, in callgrind).
-  // The bound (depth_, bound_) is set here: after a gathering pass nothing is deferred, so next()
-  // never reads it.
-  [[gnu::noinline]] void descend_first(std::size_t max_hits) {
+  // begin_into() where the answer is not "gather" at once: a depth-first pass, or, on a ray due
+  // for a probe, a gathering one after all where no gathered ray held max_hits hits since the last
+  // probe. Out of line, so that begin_into()'s gathering path, which most rays take where culling
+  // saves little, stays as small as `filter`'s.
+  [[gnu::noinline]] bool begin_otherwise(std::size_t max_hits, std::vector<Hit>& out) {
+    if (gathering_) {
+      // rays_ == next_probe_ (counted already): probe it, or put the next probe one interval on.
+      next_probe_ = rays_ + probe_every_;
+      if (!could_cull_) {
+        could_cull_ = this->gather_sorted(out, max_hits) >= std::max<std::size_t>(max_hits, 1);
+        return true;
+      }
+    } else {
+      ++rays_;
+    }
+    descend_first(max_hits);
+    return false;
+  }
+
+  // A depth-first first pass. The bound (depth_, bound_) is set here: after a gathering pass
+  // nothing is deferred, so next() never reads it.
+  void descend_first(std::size_t max_hits) {
     depth_ = max_hits == 0 ? 1 : max_hits;
     bound_ = this->ray_.tmax;
     // The first pass, from the root (what the first next() would do, without the heap).
@@ -137,6 +155,10 @@ class QueueKernel : public WideKernel<T, C> {
     // kProbeMost-th ray); one that does not brings the interval back to kProbeLeast.
     const bool clear = deferred < kBreadthFirstBelow / 4 && deferred_per_step_ < kBreadthFirstBelow / 4;
     probe_every_ = clear ? std::min(2 * probe_every_, kProbeMost) : kProbeLeast;
+    if (first_pass_ == QueueFirstPass::adaptive) {
+      gathering_ = deferred_per_step_ < kBreadthFirstBelow;
+      next_probe_ = rays_ + probe_every_;
+    }
   }
 
   // Every hit is held in order; a node entered beyond the depth_-th held hit not yet returned is
@@ -170,6 +192,9 @@ class QueueKernel : public WideKernel<T, C> {
 
   std::vector<Hit> hits_;  // held hits in hit order; those before pos_ were returned
   std::size_t pos_ = 0;
+  // hits_ from here on are in no order (a gathering pass sorted only the first max_hits).
+  static constexpr std::size_t kAllSorted = std::size_t(-1);
+  std::size_t unsorted_from_ = kAllSorted;
   std::size_t depth_ = 1;  // the bound is the depth_-th held hit not yet returned
   T bound_ = 0;            // its t (tmax while fewer are held)
   NodeHeap<T> deferred_;   // nodes entered beyond the bound, nearest first
@@ -186,6 +211,11 @@ class QueueKernel : public WideKernel<T, C> {
   // (a power of two), to measure what culling would save.
   static constexpr std::uint64_t kProbeLeast = 32, kProbeMost = 256;
   std::uint64_t probe_every_ = kProbeLeast;
+  // Whether first passes gather (breadth_first: always; adaptive: while culling saves little),
+  // and the ray count at which an adaptive kernel's next probe is due (kNever: no probes).
+  static constexpr std::uint64_t kNever = std::uint64_t(-1);
+  bool gathering_ = false;
+  std::uint64_t next_probe_ = kNever;
   bool could_cull_ = false;  // a gathering pass since the last probe held max_hits hits (1 without a hint) or more
 };
 
