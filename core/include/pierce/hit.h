@@ -69,27 +69,29 @@ struct HitOrder {
   }
 };
 
+// Moves the hit at `pos` down into the sorted hits [first, pos) (insertion sort's step).
+template <class It>
+[[gnu::always_inline]] inline void insert_into_sorted(It first, It pos, const HitOrder& order) {
+  if (pos == first || !order.less(*pos, *(pos - 1))) return;  // in place already: the common case
+  const Hit h = *pos;
+  do {
+    *pos = *(pos - 1);
+    --pos;
+  } while (pos != first && order.less(h, *(pos - 1)));
+  *pos = h;
+}
+
 // Sorts the hits [first, last) in `order`. A ray holds few hits as a rule: up to 16 are sorted by
 // insertion inline (what std::sort does with so few, without its calls), more by std::sort. Inline
-// wherever hits are gathered, so `filter` and `queue`'s gathering pass sort alike (an out-of-line
-// insertion sort in one of them cost it about 2 % of its instructions).
+// wherever hits are gathered, so that `filter` and `queue`'s gathering pass sort alike (GCC had
+// left std::sort's insertion step inline in one and out of line in the other).
 template <class It>
 [[gnu::always_inline]] inline void sort_hits(It first, It last, const HitOrder& order) {
   if (last - first > 16) {
     std::sort(first, last, order);
     return;
   }
-  if (first == last) return;
-  for (It i = first + 1; i != last; ++i) {
-    if (!order.less(*i, *(i - 1))) continue;  // in place already: the common case
-    const Hit h = *i;
-    It j = i;
-    do {
-      *j = *(j - 1);
-      --j;
-    } while (j != first && order.less(h, *(j - 1)));
-    *j = h;
-  }
+  for (It i = first; i != last; ++i) insert_into_sorted(first, i, order);
 }
 
 // The first `count` hits of [first, last) in `order` moved to its front, sorted; the others after
@@ -105,17 +107,14 @@ template <class It>
     std::partial_sort(first, first + std::ptrdiff_t(count), last, order);
     return;
   }
-  // Insertion into the sorted front: a hit that ranks before its last one takes its place there,
-  // and the last one moves to the hit's.
+  // A hit that ranks before the front's last one takes its place there and is moved down into the
+  // front; the last one goes to the hit's place.
   const It back = first + std::ptrdiff_t(count - 1);
   sort_hits(first, back + 1, order);
   for (It i = back + 1; i != last; ++i) {
     if (!order.less(*i, *back)) continue;
-    const Hit h = *i;
-    *i = *back;
-    It j = back;
-    for (; j != first && order.less(h, *(j - 1)); --j) *j = *(j - 1);
-    *j = h;
+    std::swap(*i, *back);
+    insert_into_sorted(first, back, order);
   }
 }
 

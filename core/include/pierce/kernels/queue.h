@@ -72,7 +72,7 @@ class QueueKernel : public WideKernel<T, C> {
       // `filter`'s pass: every hit in range, nothing deferred. It runs where culling saves little,
       // and breadth first the bound would close late anyway. Unlike `filter`, it sorts only the
       // max_hits hits the caller wants: a ray with many more (hairball) is not sorted in full.
-      could_cull_ |= this->gather_sorted(out, max_hits) >= std::max<std::size_t>(max_hits, 1);
+      could_cull_ |= gather(max_hits, out);
       return true;
     }
     return begin_otherwise(max_hits, out);
@@ -125,7 +125,7 @@ class QueueKernel : public WideKernel<T, C> {
       // rays_ == next_probe_ (counted already): probe it, or put the next probe one interval on.
       next_probe_ = rays_ + probe_every_;
       if (!could_cull_) {
-        could_cull_ = this->gather_sorted(out, max_hits) >= std::max<std::size_t>(max_hits, 1);
+        could_cull_ = gather(max_hits, out);
         return true;
       }
     } else {
@@ -133,6 +133,12 @@ class QueueKernel : public WideKernel<T, C> {
     }
     descend_first(max_hits);
     return false;
+  }
+
+  // A gathering first pass into `out`; true if the ray held max_hits hits (1 without a hint) or
+  // more, so that culling could have paid on it.
+  [[gnu::always_inline]] bool gather(std::size_t max_hits, std::vector<Hit>& out) {
+    return this->gather_sorted(out, max_hits) >= std::max<std::size_t>(max_hits, 1);
   }
 
   // A depth-first first pass. The bound (depth_, bound_) is set here: after a gathering pass
