@@ -142,9 +142,26 @@ std::string row_name(std::string_view kernel, std::optional<PrefetchMode> mode, 
   return name;
 }
 
+// The own-BVH kernel rows (restart, queue, filter, ...) all read one BVH, so their passes can be
+// interleaved by chunk of rays without one evicting another's data: every repetition of theirs
+// runs chunk by chunk, each chunk through every own-BVH cell in turn. A change of the machine's
+// speed then falls on all of them alike within milliseconds, not within a pass (tens of
+// milliseconds on CGAL's meshes, where by repetition the same two cells' ratio ranged over 30 %):
+// the ratios between them (queue / min(restart, filter)) are read to about 1 %. Chunks of at least
+// 8192 rays per thread, so that the end of each parallel chunk (one thread finishing before the
+// other) costs little.
+std::size_t chunk_rays(std::size_t ray_count) {
+  const auto threads =
+      std::max<std::size_t>(1, tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+  return std::max<std::size_t>(8192 * threads, (ray_count + 31) / 32);
+}
+
+bool shares_the_bvh(const Row& row) { return row.prefetch.has_value(); }
+
 // Every cell of every row: a warm-up on the first eighth of the rays, then `reps` timed passes
 // over all of them, interleaved across cells (see CellJob), each after an untimed pass over the
-// first sixteenth.
+// first sixteenth. The own-BVH rows' passes are interleaved by chunk (chunk_rays()), after the
+// other rows' in each repetition.
 void time_rows(std::vector<Row>& rows, std::size_t ray_count, int reps) {
   std::vector<Counters> before;
   for (Row& row : rows)
@@ -155,25 +172,60 @@ void time_rows(std::vector<Row>& rows, std::size_t ray_count, int reps) {
       row.jobs[c].pass(cell, 0, std::max<std::size_t>(1, ray_count / 8));
       before.push_back(row.jobs[c].counters());
     }
+  struct Timed {
+    Row* row;
+    std::size_t column, index;  // index: into before and untimed
+  };
+  std::vector<Timed> own;
+  {
+    std::size_t k = 0;
+    for (Row& row : rows)
+      for (std::size_t c = 0; c < row.cells.size(); ++c, ++k)
+        if (shares_the_bvh(row)) own.push_back({&row, c, k});
+  }
+  const std::size_t chunk = chunk_rays(ray_count);
   // Counts of the untimed passes below, taken out of the cells' counters afterwards.
   std::vector<Counters> untimed(before.size());
+  const auto warm = [&](const Timed& t) {
+    // Every cell starts with its own data in the caches: the rows use different structures
+    // (Embree's scenes, Pierce's BVH), and without this the first row of each repetition ran
+    // on data the previous row had evicted.
+    const Counters warm_from = t.row->jobs[t.column].counters();
+    t.row->jobs[t.column].pass(t.row->cells[t.column], 0, std::max<std::size_t>(1, ray_count / 16));
+    untimed[t.index] += t.row->jobs[t.column].counters() - warm_from;
+  };
+  const auto record = [](Cell& cell, int r, double seconds, const Tally& t) {
+    cell.seconds.push_back(seconds);
+    if (r == 0) cell.tally = t;
+    else if (!(t == cell.tally)) cell.deterministic = false;
+  };
   for (int r = 0; r < reps; ++r) {
     std::size_t k = 0;
     for (Row& row : rows)
       for (std::size_t c = 0; c < row.cells.size(); ++c, ++k) {
-        Cell& cell = row.cells[c];
-        // Every cell starts with its own data in the caches: the rows use different structures
-        // (Embree's scenes, Pierce's BVH), and without this the first row of each repetition ran
-        // on data the previous row had evicted.
-        const Counters warm_from = row.jobs[c].counters();
-        row.jobs[c].pass(cell, 0, std::max<std::size_t>(1, ray_count / 16));
-        untimed[k] += row.jobs[c].counters() - warm_from;
+        if (shares_the_bvh(row)) continue;
+        const Timed t{&row, c, k};
+        warm(t);
         const auto t0 = Clock::now();
-        const Tally t = row.jobs[c].pass(cell, 0, ray_count);
-        cell.seconds.push_back(seconds_since(t0));
-        if (r == 0) cell.tally = t;
-        else if (!(t == cell.tally)) cell.deterministic = false;
+        const Tally tally = row.jobs[c].pass(row.cells[c], 0, ray_count);
+        record(row.cells[c], r, seconds_since(t0), tally);
       }
+    if (own.empty()) continue;
+    warm(own.front());  // they share the BVH: one warm-up brings it back for all of them
+    std::vector<double> seconds(own.size(), 0.0);
+    std::vector<Tally> tallies(own.size());
+    for (std::size_t begin = 0, j = 0; begin < ray_count; begin += chunk, ++j) {
+      const std::size_t end = std::min(ray_count, begin + chunk);
+      // Each chunk starts one cell further on, so that no cell always runs first.
+      for (std::size_t i = 0; i < own.size(); ++i) {
+        const std::size_t o = (i + j) % own.size();
+        const Timed& t = own[o];
+        const auto t0 = Clock::now();
+        tallies[o] += t.row->jobs[t.column].pass(t.row->cells[t.column], begin, end);
+        seconds[o] += seconds_since(t0);
+      }
+    }
+    for (std::size_t o = 0; o < own.size(); ++o) record(own[o].row->cells[own[o].column], r, seconds[o], tallies[o]);
   }
   std::size_t k = 0;
   for (Row& row : rows)
@@ -677,7 +729,8 @@ SceneResult run_scene(const BenchScene& s, const std::vector<KernelKind>& kernel
     }
     for (const PrefetchMode mode : st.prefetch) r.rows.push_back(run_kernel(accel, k, mode, s.rays, st));
   }
-  std::cerr << "[" << s.name << "] timing " << r.rows.size() << " rows, repetitions interleaved\n";
+  std::cerr << "[" << s.name << "] timing " << r.rows.size() << " rows, repetitions interleaved (own-BVH rows by chunk of "
+            << chunk_rays(s.rays.size()) << " rays)\n";
   time_rows(r.rows, s.rays.size(), st.reps);
   r.reference_mrays = mrays_per_s(r.rows.front().cells[0], s.rays.size());
   check_agreement(r, st);
@@ -814,7 +867,9 @@ int run(int argc, char** argv) {
             << (st.count ? "on (the kernels' counting variants are timed)" : "off") << (quick ? ", --quick" : "")
             << ", prefetch " << prefetch_list_text(st) << "\n"
             << "rays per scene " << ray_count << ", seed " << seed << ", " << st.reps
-            << " timed repetitions per cell (median) after a warm-up on 1/8 of the rays, each after an untimed pass over 1/16\n";
+            << " timed repetitions per cell (median) after a warm-up on 1/8 of the rays, each after an untimed pass over 1/16;"
+               " the own-BVH rows' repetitions interleaved by chunk of "
+            << chunk_rays(ray_count) << " rays\n";
 
   const auto start = Clock::now();
   std::vector<std::unique_ptr<BenchScene>> scenes;

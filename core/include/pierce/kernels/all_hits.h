@@ -23,7 +23,9 @@ class AllHitsKernel : public WideKernel<T, C> {
     hits_.clear();
     pos_ = 0;
     this->prepare(ray);
-    this->gather_sorted(out);
+    const std::size_t first = out.size();
+    this->gather_in_range(out);
+    sort_hits(out.begin() + std::ptrdiff_t(first), out.end(), this->order_);
     return true;
   }
 

@@ -46,7 +46,7 @@ class QueueKernel : public WideKernel<T, C> {
                        QueueFirstPass first_pass = QueueFirstPass::adaptive)
       : Base(bvh, order), first_pass_(first_pass) {
     gathering_ = first_pass == QueueFirstPass::breadth_first;
-    next_probe_ = first_pass == QueueFirstPass::adaptive ? probe_every_ : kNever;
+    until_probe_ = gathering_ ? kNever : 1;
     hits_.reserve(16);
     deferred_.reserve(4 * bvh.stack_capacity());
   }
@@ -66,13 +66,13 @@ class QueueKernel : public WideKernel<T, C> {
     hits_.clear();
     pos_ = 0;
     deferred_.clear();
-    // While it gathers, this test is all a ray pays over `filter`: whether to probe is decided
-    // once per probe interval (begin_otherwise()), not per ray.
-    if (gathering_ && ++rays_ != next_probe_) [[likely]] {
+    // While it gathers, this count is all a ray pays over `filter`: whether to probe is decided
+    // once per probe interval (begin_otherwise()), not per ray. It is 1 on every ray that does not
+    // gather.
+    if (--until_probe_ != 0) [[likely]] {
       // `filter`'s pass: every hit in range, nothing deferred. It runs where culling saves little,
-      // and breadth first the bound would close late anyway. Unlike `filter`, it sorts only the
-      // max_hits hits the caller wants: a ray with many more (hairball) is not sorted in full.
-      could_cull_ |= gather(max_hits, out);
+      // and breadth first the bound would close late anyway.
+      gather(max_hits, out);
       return true;
     }
     return begin_otherwise(max_hits, out);
@@ -87,7 +87,7 @@ class QueueKernel : public WideKernel<T, C> {
   // runs only once a gathered ray since the last one held as many hits as the bound's depth: a ray
   // with fewer closes no bound, so depth first it would defer nothing, and where no ray holds that
   // many (CGAL's meshes and blob at N = 15) a probe could only cost.
-  bool breadth_first() const { return gathering_ && !(rays_ + 1 == next_probe_ && could_cull_); }
+  bool breadth_first() const { return gathering_ && !(until_probe_ == 1 && could_cull_); }
 
   bool next(Hit& out) {
     // Nothing deferred (always after a gathering pass): every hit left is held, in order, and no
@@ -122,23 +122,33 @@ class QueueKernel : public WideKernel<T, C> {
   // saves little, stays as small as `filter`'s.
   [[gnu::noinline]] bool begin_otherwise(std::size_t max_hits, std::vector<Hit>& out) {
     if (gathering_) {
-      // rays_ == next_probe_ (counted already): probe it, or put the next probe one interval on.
-      next_probe_ = rays_ + probe_every_;
+      // A probe is due on this ray: run it, or put it one interval on.
+      until_probe_ = probe_every_;
       if (!could_cull_) {
-        could_cull_ = gather(max_hits, out);
+        gather(max_hits, out);
         return true;
       }
     } else {
-      ++rays_;
+      until_probe_ = 1;  // the next ray comes here too, unless descend_first() starts gathering
     }
     descend_first(max_hits);
     return false;
   }
 
-  // A gathering first pass into `out`; true if the ray held max_hits hits (1 without a hint) or
-  // more, so that culling could have paid on it.
-  [[gnu::always_inline]] bool gather(std::size_t max_hits, std::vector<Hit>& out) {
-    return this->gather_sorted(out, max_hits) >= std::max<std::size_t>(max_hits, 1);
+  // A gathering first pass into `out`. Unlike `filter`, it sorts only the max_hits hits the caller
+  // wants: a ray with many more (hairball) is not sorted in full. A ray that holds max_hits hits
+  // (1 without a hint) or more could have closed the bound, so culling could have paid on it
+  // (could_cull_); where none does, this count is all the bookkeeping a ray pays.
+  [[gnu::always_inline]] void gather(std::size_t max_hits, std::vector<Hit>& out) {
+    const std::size_t first = out.size();
+    this->gather_in_range(out);
+    const auto from = out.begin() + std::ptrdiff_t(first);
+    if (out.end() - from < std::ptrdiff_t(std::max<std::size_t>(max_hits, 1))) [[likely]] {
+      sort_hits(from, out.end(), this->order_);
+      return;
+    }
+    could_cull_ = true;
+    sort_first_hits(from, out.end(), max_hits, this->order_);
   }
 
   // A depth-first first pass. The bound (depth_, bound_) is set here: after a gathering pass
@@ -163,7 +173,7 @@ class QueueKernel : public WideKernel<T, C> {
     probe_every_ = clear ? std::min(2 * probe_every_, kProbeMost) : kProbeLeast;
     if (first_pass_ == QueueFirstPass::adaptive) {
       gathering_ = deferred_per_step_ < kBreadthFirstBelow;
-      next_probe_ = rays_ + probe_every_;
+      until_probe_ = gathering_ ? probe_every_ : 1;
     }
   }
 
@@ -212,16 +222,16 @@ class QueueKernel : public WideKernel<T, C> {
   static constexpr float kBreadthFirstBelow = 0.08f;
   float deferred_per_step_ = 1.0f;  // adaptive: starts near to far
   std::uint64_t steps_ = 0;         // nodes traversed in this ray's passes
-  std::uint64_t rays_ = 0;
   // Adaptive: a breadth-first kernel's first pass still runs depth first on every probe_every_-th ray
   // (a power of two), to measure what culling would save.
   static constexpr std::uint64_t kProbeLeast = 32, kProbeMost = 256;
   std::uint64_t probe_every_ = kProbeLeast;
   // Whether first passes gather (breadth_first: always; adaptive: while culling saves little),
-  // and the ray count at which an adaptive kernel's next probe is due (kNever: no probes).
+  // and, while they do, the rays until an adaptive kernel's next probe, this one included (kNever:
+  // no probes; 1 while first passes run depth first).
   static constexpr std::uint64_t kNever = std::uint64_t(-1);
   bool gathering_ = false;
-  std::uint64_t next_probe_ = kNever;
+  std::uint64_t until_probe_ = 1;
   bool could_cull_ = false;  // a gathering pass since the last probe held max_hits hits (1 without a hint) or more
 };
 

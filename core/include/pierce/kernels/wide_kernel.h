@@ -73,18 +73,14 @@ class WideKernel {
     pending_.clear();
     seed(*bvh_, ray_, lo, hi, pending_, counters);
   }
-  // Every hit of the prepared ray in [tmin, tmax], appended to `out`: one traversal, breadth first
-  // (GatherInRange), and one sort (`filter`, and `queue`'s gathering pass). The first `sorted` of
-  // them come first and in order, the rest after them in no order (sort_first_hits; 0: all sorted).
-  // Returns how many were gathered. Inlined into both, so that `queue`'s gathering pass costs no
-  // call more than `filter`'s.
-  [[gnu::always_inline]] std::size_t gather_sorted(std::vector<Hit>& out, std::size_t sorted = 0) {
-    const std::size_t first = out.size();
+  // Every hit of the prepared ray in [tmin, tmax], appended to `out` in the order the traversal
+  // met them: one traversal, breadth first (GatherInRange). `filter` and `queue`'s gathering pass
+  // sort them after it, each as far as its caller needs. Inlined into both, so that `queue`'s
+  // gathering pass costs no call more than `filter`'s.
+  [[gnu::always_inline]] void gather_in_range(std::vector<Hit>& out) {
     seed_root(ray_.tmin, ray_.tmax);
     GatherInRange<T> p{ray_, out};
     run(p);
-    sort_first_hits(out.begin() + std::ptrdiff_t(first), out.end(), sorted, order_);
-    return out.size() - first;
   }
   // Traverses until every pending node is done (true) or the policy suspends (false).
   template <class Policy>
