@@ -21,6 +21,8 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <numeric>
+#include <random>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -87,6 +89,10 @@ struct Cell {
   std::size_t max_hits = 0;  // 0 = all
   std::vector<double> seconds;
   double median_seconds = 0;
+  // `restart`, `queue` and `filter` at N = 5 and 15: their repetitions timed again, interleaved by
+  // chunk of rays (time_queue_pairs()); empty in every other cell.
+  std::vector<double> paired_seconds;
+  double paired_median_seconds = 0;
   Tally tally;
   bool deterministic = true;  // every repetition found the same hits
   Counters counters;          // summed over the timed repetitions
@@ -142,26 +148,9 @@ std::string row_name(std::string_view kernel, std::optional<PrefetchMode> mode, 
   return name;
 }
 
-// The own-BVH kernel rows (restart, queue, filter, ...) all read one BVH, so their passes can be
-// interleaved by chunk of rays without one evicting another's data: every repetition of theirs
-// runs chunk by chunk, each chunk through every own-BVH cell in turn. A change of the machine's
-// speed then falls on all of them alike within milliseconds, not within a pass (tens of
-// milliseconds on CGAL's meshes, where by repetition the same two cells' ratio ranged over 30 %):
-// the ratios between them (queue / min(restart, filter)) are read to about 1 %. Chunks of at least
-// 8192 rays per thread, so that the end of each parallel chunk (one thread finishing before the
-// other) costs little.
-std::size_t chunk_rays(std::size_t ray_count) {
-  const auto threads =
-      std::max<std::size_t>(1, tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
-  return std::max<std::size_t>(8192 * threads, (ray_count + 31) / 32);
-}
-
-bool shares_the_bvh(const Row& row) { return row.prefetch.has_value(); }
-
 // Every cell of every row: a warm-up on the first eighth of the rays, then `reps` timed passes
 // over all of them, interleaved across cells (see CellJob), each after an untimed pass over the
-// first sixteenth. The own-BVH rows' passes are interleaved by chunk (chunk_rays()), after the
-// other rows' in each repetition.
+// first sixteenth.
 void time_rows(std::vector<Row>& rows, std::size_t ray_count, int reps) {
   std::vector<Counters> before;
   for (Row& row : rows)
@@ -172,60 +161,25 @@ void time_rows(std::vector<Row>& rows, std::size_t ray_count, int reps) {
       row.jobs[c].pass(cell, 0, std::max<std::size_t>(1, ray_count / 8));
       before.push_back(row.jobs[c].counters());
     }
-  struct Timed {
-    Row* row;
-    std::size_t column, index;  // index: into before and untimed
-  };
-  std::vector<Timed> own;
-  {
-    std::size_t k = 0;
-    for (Row& row : rows)
-      for (std::size_t c = 0; c < row.cells.size(); ++c, ++k)
-        if (shares_the_bvh(row)) own.push_back({&row, c, k});
-  }
-  const std::size_t chunk = chunk_rays(ray_count);
   // Counts of the untimed passes below, taken out of the cells' counters afterwards.
   std::vector<Counters> untimed(before.size());
-  const auto warm = [&](const Timed& t) {
-    // Every cell starts with its own data in the caches: the rows use different structures
-    // (Embree's scenes, Pierce's BVH), and without this the first row of each repetition ran
-    // on data the previous row had evicted.
-    const Counters warm_from = t.row->jobs[t.column].counters();
-    t.row->jobs[t.column].pass(t.row->cells[t.column], 0, std::max<std::size_t>(1, ray_count / 16));
-    untimed[t.index] += t.row->jobs[t.column].counters() - warm_from;
-  };
-  const auto record = [](Cell& cell, int r, double seconds, const Tally& t) {
-    cell.seconds.push_back(seconds);
-    if (r == 0) cell.tally = t;
-    else if (!(t == cell.tally)) cell.deterministic = false;
-  };
   for (int r = 0; r < reps; ++r) {
     std::size_t k = 0;
     for (Row& row : rows)
       for (std::size_t c = 0; c < row.cells.size(); ++c, ++k) {
-        if (shares_the_bvh(row)) continue;
-        const Timed t{&row, c, k};
-        warm(t);
+        Cell& cell = row.cells[c];
+        // Every cell starts with its own data in the caches: the rows use different structures
+        // (Embree's scenes, Pierce's BVH), and without this the first row of each repetition ran
+        // on data the previous row had evicted.
+        const Counters warm_from = row.jobs[c].counters();
+        row.jobs[c].pass(cell, 0, std::max<std::size_t>(1, ray_count / 16));
+        untimed[k] += row.jobs[c].counters() - warm_from;
         const auto t0 = Clock::now();
-        const Tally tally = row.jobs[c].pass(row.cells[c], 0, ray_count);
-        record(row.cells[c], r, seconds_since(t0), tally);
+        const Tally t = row.jobs[c].pass(cell, 0, ray_count);
+        cell.seconds.push_back(seconds_since(t0));
+        if (r == 0) cell.tally = t;
+        else if (!(t == cell.tally)) cell.deterministic = false;
       }
-    if (own.empty()) continue;
-    warm(own.front());  // they share the BVH: one warm-up brings it back for all of them
-    std::vector<double> seconds(own.size(), 0.0);
-    std::vector<Tally> tallies(own.size());
-    for (std::size_t begin = 0, j = 0; begin < ray_count; begin += chunk, ++j) {
-      const std::size_t end = std::min(ray_count, begin + chunk);
-      // Each chunk starts one cell further on, so that no cell always runs first.
-      for (std::size_t i = 0; i < own.size(); ++i) {
-        const std::size_t o = (i + j) % own.size();
-        const Timed& t = own[o];
-        const auto t0 = Clock::now();
-        tallies[o] += t.row->jobs[t.column].pass(t.row->cells[t.column], begin, end);
-        seconds[o] += seconds_since(t0);
-      }
-    }
-    for (std::size_t o = 0; o < own.size(); ++o) record(own[o].row->cells[own[o].column], r, seconds[o], tallies[o]);
   }
   std::size_t k = 0;
   for (Row& row : rows)
@@ -237,6 +191,62 @@ void time_rows(std::vector<Row>& rows, std::size_t ray_count, int reps) {
                        after.leaf_visits - before[k].leaf_visits};
       cell.median_seconds = median(cell.seconds);
     }
+}
+
+// The rays of one chunk (time_queue_pairs()): at least 8192 per thread, so that the end of each
+// parallel chunk (one thread finishing before the other) costs little; at most 1/32 of the rays.
+std::size_t chunk_rays(std::size_t ray_count) {
+  const auto threads =
+      std::max<std::size_t>(1, tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+  return std::max<std::size_t>(8192 * threads, (ray_count + 31) / 32);
+}
+
+// "queue / min(restart, filter)" compares cells whose work is the same where no ray holds N hits
+// (queue then runs filter's pass), and time_rows() times them tens of milliseconds apart: on this
+// machine the same two cells' ratio ranged over 30 % by repetition. So the cells of `restart`,
+// `queue` and `filter` at N = 5 and 15 are timed again, alone, chunk by chunk: each chunk of rays
+// through every one of them, in a new order per chunk (a fixed order would have each cell always
+// follow the same one, and start on what that one left in the branch predictors). They read the
+// same BVH, so none evicts another's data. A change of the machine's speed then falls on all of
+// them alike within milliseconds.
+void time_queue_pairs(std::vector<Row>& rows, std::size_t ray_count, const Settings& st) {
+  struct Paired {
+    Row* row;
+    std::size_t column;
+  };
+  std::vector<Paired> cells;
+  for (const PrefetchMode mode : st.prefetch)
+    for (const char* kernel : {"restart", "queue", "filter"})
+      for (Row& row : rows)
+        if (row.kernel == row_name(kernel, mode, st))
+          for (std::size_t c = 0; c < row.cells.size(); ++c)
+            if (row.cells[c].max_hits == 5 || row.cells[c].max_hits == 15) cells.push_back({&row, c});
+  if (cells.empty()) return;
+  const std::size_t chunk = chunk_rays(ray_count);
+  std::vector<std::size_t> order(cells.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::mt19937 shuffle_rng(12345);  // fixed: every run shuffles alike
+  for (int r = 0; r < st.reps; ++r) {
+    std::vector<double> seconds(cells.size(), 0.0);
+    // The BVH back in the caches after the rows that ran on Embree's scenes.
+    cells.front().row->jobs[cells.front().column].pass(cells.front().row->cells[cells.front().column], 0,
+                                                       std::max<std::size_t>(1, ray_count / 16));
+    for (std::size_t begin = 0; begin < ray_count; begin += chunk) {
+      const std::size_t end = std::min(ray_count, begin + chunk);
+      std::shuffle(order.begin(), order.end(), shuffle_rng);
+      for (const std::size_t o : order) {
+        const Paired& p = cells[o];
+        const auto t0 = Clock::now();
+        p.row->jobs[p.column].pass(p.row->cells[p.column], begin, end);
+        seconds[o] += seconds_since(t0);
+      }
+    }
+    for (std::size_t o = 0; o < cells.size(); ++o) cells[o].row->cells[cells[o].column].paired_seconds.push_back(seconds[o]);
+  }
+  for (const Paired& p : cells) {
+    Cell& cell = p.row->cells[p.column];
+    cell.paired_median_seconds = median(cell.paired_seconds);
+  }
 }
 
 constexpr std::size_t kGrain = 256;
@@ -351,6 +361,8 @@ std::string fmt(const char* f, double x) {
 
 constexpr std::size_t kNameWidth = 22;
 
+
+
 // `t` left-aligned in `w` columns (at least one space after it).
 std::string pad(const std::string& t, std::size_t w) { return t.size() < w ? t + std::string(w - t.size(), ' ') : t + " "; }
 
@@ -439,6 +451,15 @@ const Row* best_exact_own(const SceneResult& r, std::size_t column, PrefetchMode
     if (best == nullptr || row.cells[column].median_seconds < best->cells[column].median_seconds) best = &row;
   }
   return best;
+}
+
+// The range of a / b taken repetition by repetition (the two cells of one repetition ran moments
+// apart): on a shared machine this shows how far one run's median can be trusted.
+std::string by_repetition(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() < 2 || a.size() != b.size()) return {};
+  double lo = std::numeric_limits<double>::infinity(), hi = 0;
+  for (std::size_t k = 0; k < a.size(); ++k) lo = std::min(lo, a[k] / b[k]), hi = std::max(hi, a[k] / b[k]);
+  return " [" + fmt("%.2f", lo) + "-" + fmt("%.2f", hi) + " by repetition]";
 }
 
 void print_scene(const SceneResult& r, const Settings& st) {
@@ -546,17 +567,7 @@ void print_scene(const SceneResult& r, const Settings& st) {
   // What exactness costs: time ratios (>1 = slower than the plain Embree row), same rays, same run.
   std::cout << "\ncost of exactness (time of the exact kernel / time of plain Embree code):\n";
   auto ratio = [&](const Cell* a, const Cell* b) { return a && b ? fmt("%.2f", a->median_seconds / b->median_seconds) : std::string("-"); };
-  // The spread of the same ratio taken repetition by repetition (the two cells of one repetition
-  // ran moments apart): on a shared machine this shows how far one run's median can be trusted.
-  auto spread = [&](const Cell* a, const Cell* b) {
-    if (!a || !b || a->seconds.size() < 2 || a->seconds.size() != b->seconds.size()) return std::string();
-    double lo = std::numeric_limits<double>::infinity(), hi = 0;
-    for (std::size_t k = 0; k < a->seconds.size(); ++k) {
-      const double q = a->seconds[k] / b->seconds[k];
-      lo = std::min(lo, q), hi = std::max(hi, q);
-    }
-    return " [" + fmt("%.2f", lo) + "-" + fmt("%.2f", hi) + " by repetition]";
-  };
+  auto spread = [&](const Cell* a, const Cell* b) { return a && b ? by_repetition(a->seconds, b->seconds) : std::string(); };
   for (const PrefetchMode mode : st.prefetch) {
     if (st.prefetch.size() > 1) std::cout << " prefetch " << enum_name(mode) << ":\n";
     const auto own = [&](const char* kernel) { return row_name(kernel, mode, st); };
@@ -576,9 +587,11 @@ void print_scene(const SceneResult& r, const Settings& st) {
         const Cell* q = find_cell(r, own("queue"), n);
         const Cell* a = find_cell(r, own("restart"), n);
         const Cell* f = find_cell(r, own("filter"), n);
-        if (q && a && f) {
-          const Cell* better = a->median_seconds < f->median_seconds ? a : f;
-          std::cout << "; queue / min(restart, filter) " << ratio(q, better) << spread(q, better);
+        if (q && a && f && !q->paired_seconds.empty()) {
+          // From time_queue_pairs(): the three rows' cells timed again, interleaved by chunk.
+          const Cell* better = a->paired_median_seconds < f->paired_median_seconds ? a : f;
+          std::cout << "; queue / min(restart, filter) " << fmt("%.2f", q->paired_median_seconds / better->paired_median_seconds)
+                    << by_repetition(q->paired_seconds, better->paired_seconds) << " (" << (better == a ? "restart" : "filter") << ", interleaved by chunk)";
         }
       }
       std::cout << "\n";
@@ -629,6 +642,8 @@ json scene_json(const SceneResult& r) {
       json jc = {{"max_hits", c.max_hits == 0 ? json("all") : json(c.max_hits)},
                  {"seconds", c.seconds},
                  {"median_seconds", c.median_seconds},
+                 {"paired_seconds", c.paired_seconds},
+                 {"paired_median_seconds", c.paired_median_seconds},
                  {"mrays_per_s", m},
                  {"ratio_to_embree_first_hit", m / r.reference_mrays},
                  {"hits", c.tally.hits},
@@ -729,9 +744,9 @@ SceneResult run_scene(const BenchScene& s, const std::vector<KernelKind>& kernel
     }
     for (const PrefetchMode mode : st.prefetch) r.rows.push_back(run_kernel(accel, k, mode, s.rays, st));
   }
-  std::cerr << "[" << s.name << "] timing " << r.rows.size() << " rows, repetitions interleaved (own-BVH rows by chunk of "
-            << chunk_rays(s.rays.size()) << " rays)\n";
+  std::cerr << "[" << s.name << "] timing " << r.rows.size() << " rows, repetitions interleaved\n";
   time_rows(r.rows, s.rays.size(), st.reps);
+  time_queue_pairs(r.rows, s.rays.size(), st);
   r.reference_mrays = mrays_per_s(r.rows.front().cells[0], s.rays.size());
   check_agreement(r, st);
   count_wrong_rays(r);
@@ -868,8 +883,8 @@ int run(int argc, char** argv) {
             << ", prefetch " << prefetch_list_text(st) << "\n"
             << "rays per scene " << ray_count << ", seed " << seed << ", " << st.reps
             << " timed repetitions per cell (median) after a warm-up on 1/8 of the rays, each after an untimed pass over 1/16;"
-               " the own-BVH rows' repetitions interleaved by chunk of "
-            << chunk_rays(ray_count) << " rays\n";
+               " queue / min(restart, filter) from a further "
+            << st.reps << " repetitions of those cells alone, interleaved by chunk of " << chunk_rays(ray_count) << " rays\n";
 
   const auto start = Clock::now();
   std::vector<std::unique_ptr<BenchScene>> scenes;

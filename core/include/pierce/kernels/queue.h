@@ -147,8 +147,14 @@ class QueueKernel : public WideKernel<T, C> {
       sort_hits(from, out.end(), this->order_);
       return;
     }
+    sort_first(from, out.end(), max_hits);
+  }
+  // gather() on a ray that holds max_hits hits or more: out of line, so that the path of the rays
+  // that hold fewer is laid out as `filter`'s.
+  [[gnu::noinline]] void sort_first(std::vector<Hit>::iterator first, std::vector<Hit>::iterator last,
+                                    std::size_t max_hits) {
     could_cull_ = true;
-    sort_first_hits(from, out.end(), max_hits, this->order_);
+    sort_first_hits(first, last, max_hits, this->order_);
   }
 
   // A depth-first first pass. The bound (depth_, bound_) is set here: after a gathering pass
