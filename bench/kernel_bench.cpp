@@ -193,8 +193,8 @@ void time_rows(std::vector<Row>& rows, std::size_t ray_count, int reps) {
     }
 }
 
-// The rays of one chunk (time_queue_pairs()): at least 8192 per thread, so that the end of each
-// parallel chunk (one thread finishing before the other) costs little; at most 1/32 of the rays.
+// The rays of one chunk (time_queue_pairs()): 8192 per thread, so that the end of each parallel
+// chunk (one thread finishing before the other) costs little, or 1/32 of the rays where that is more.
 std::size_t chunk_rays(std::size_t ray_count) {
   const auto threads =
       std::max<std::size_t>(1, tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
@@ -360,8 +360,6 @@ std::string fmt(const char* f, double x) {
 }
 
 constexpr std::size_t kNameWidth = 22;
-
-
 
 // `t` left-aligned in `w` columns (at least one space after it).
 std::string pad(const std::string& t, std::size_t w) { return t.size() < w ? t + std::string(w - t.size(), ' ') : t + " "; }
