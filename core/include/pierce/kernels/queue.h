@@ -138,7 +138,7 @@ class QueueKernel : public WideKernel<T, C> {
   // A gathering first pass into `out`. Unlike `filter`, it sorts only the max_hits hits the caller
   // wants: a ray with many more (hairball) is not sorted in full. A ray that holds max_hits hits
   // (1 without a hint) or more could have closed the bound, so culling could have paid on it
-  // (could_cull_); where none does, this count is all the bookkeeping a ray pays.
+  // (could_cull_); a ray that holds fewer pays only the size test for it.
   [[gnu::always_inline]] void gather(std::size_t max_hits, std::vector<Hit>& out) {
     const std::size_t first = out.size();
     this->gather_in_range(out);
