@@ -209,6 +209,15 @@ std::size_t chunk_rays(std::size_t ray_count) {
 // follow the same one, and start on what that one left in the branch predictors). They read the
 // same BVH, so none evicts another's data. A change of the machine's speed then falls on all of
 // them alike within milliseconds.
+// Where no ray holds N hits the three do the same work, so the ratio is 1 give or take the
+// timing's noise: in the twenty-sixth session's runs, cells of the same work (`filter` at N = 5
+// and at N = 15 on blob, where no ray holds 5 hits) lay up to 9 % apart in one repetition and up
+// to 3 % in the medians of five. So
+// this timing, six cells of a few tens of milliseconds each, runs kPairedRepsPerRep times the
+// table's repetitions, which narrows its medians by about half.
+constexpr int kPairedRepsPerRep = 4;
+int paired_reps(const Settings& st) { return kPairedRepsPerRep * st.reps; }
+
 void time_queue_pairs(std::vector<Row>& rows, std::size_t ray_count, const Settings& st) {
   struct Paired {
     Row* row;
@@ -226,8 +235,9 @@ void time_queue_pairs(std::vector<Row>& rows, std::size_t ray_count, const Setti
   std::vector<std::size_t> order(cells.size());
   std::iota(order.begin(), order.end(), std::size_t(0));
   std::mt19937 shuffle_rng(12345);  // fixed: every run shuffles alike
-  for (int r = 0; r < st.reps; ++r) {
+  for (int r = 0; r < paired_reps(st); ++r) {
     std::vector<double> seconds(cells.size(), 0.0);
+    std::vector<Tally> tallies(cells.size());
     // The BVH back in the caches after the rows that ran on Embree's scenes.
     cells.front().row->jobs[cells.front().column].pass(cells.front().row->cells[cells.front().column], 0,
                                                        std::max<std::size_t>(1, ray_count / 16));
@@ -237,11 +247,16 @@ void time_queue_pairs(std::vector<Row>& rows, std::size_t ray_count, const Setti
       for (const std::size_t o : order) {
         const Paired& p = cells[o];
         const auto t0 = Clock::now();
-        p.row->jobs[p.column].pass(p.row->cells[p.column], begin, end);
+        tallies[o] += p.row->jobs[p.column].pass(p.row->cells[p.column], begin, end);
         seconds[o] += seconds_since(t0);
       }
     }
-    for (std::size_t o = 0; o < cells.size(); ++o) cells[o].row->cells[cells[o].column].paired_seconds.push_back(seconds[o]);
+    for (std::size_t o = 0; o < cells.size(); ++o) {
+      Cell& cell = cells[o].row->cells[cells[o].column];
+      cell.paired_seconds.push_back(seconds[o]);
+      // The same hits as the table's repetitions (time_rows()), chunk by chunk.
+      if (!(tallies[o] == cell.tally)) cell.deterministic = false;
+    }
   }
   for (const Paired& p : cells) {
     Cell& cell = p.row->cells[p.column];
@@ -882,7 +897,7 @@ int run(int argc, char** argv) {
             << "rays per scene " << ray_count << ", seed " << seed << ", " << st.reps
             << " timed repetitions per cell (median) after a warm-up on 1/8 of the rays, each after an untimed pass over 1/16;"
                " queue / min(restart, filter) from a further "
-            << st.reps << " repetitions of those cells alone, interleaved by chunk of " << chunk_rays(ray_count) << " rays\n";
+            << paired_reps(st) << " repetitions of those cells alone, interleaved by chunk of " << chunk_rays(ray_count) << " rays\n";
 
   const auto start = Clock::now();
   std::vector<std::unique_ptr<BenchScene>> scenes;

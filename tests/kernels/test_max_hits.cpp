@@ -108,8 +108,9 @@ TEST(MaxHits, QueueGatheringPassSortsTheHitsAskedFor) {
 
 // Adaptive `queue` probes depth first less often while the probes find little to cull (hint 30:
 // 17 of the 60 rays hold 30 hits or more, and their bounds close near their ends); not at all while
-// no gathered ray holds as many hits as the hint (hint 1000: a probe could defer nothing); and runs
-// near to far again once culling defers much (hint 1).
+// no gathered ray holds as many hits as the hint (hint 1000: a probe could defer nothing), nor while
+// fewer than one in eight do (the most hits any ray holds: culling could pay on too few rays); and
+// runs near to far again once culling defers much (hint 1).
 TEST(MaxHits, QueueProbesOnlyWhereCullingCanPay) {
   const Fixture f = make_fixture();
   QueueKernel<float> k(f.world->accel.wide());
@@ -129,6 +130,15 @@ TEST(MaxHits, QueueProbesOnlyWhereCullingCanPay) {
   EXPECT_GT(probes, 0u) << "rays hold 30 hits: it still probes";
   EXPECT_LT(probes, 4096u / 32) << "less often than every 32nd ray while the probes find little to cull";
   EXPECT_EQ(run(1000, 4096, 2048), 0u) << "no ray holds 1000 hits: no probe";
+  std::size_t most = 0, holding = 0;  // the most hits a ray holds, and how many rays hold that many
+  for (const Ray& r : f.rays) {
+    const std::size_t hits = reference_hits(f.world->scene, r, {}).size();
+    if (hits > most) most = hits, holding = 0;
+    holding += hits == most;
+  }
+  ASSERT_LT(holding * QueueKernel<float>::kProbeShare, f.rays.size()) << "the fixture's longest rays must be few";
+  EXPECT_EQ(run(most, 4096, 2048), 0u) << holding << " of " << f.rays.size() << " rays hold " << most
+                                       << " hits: too few for a probe";
   EXPECT_EQ(run(1, 2048, 1536), 512u) << "at hint 1 culling defers much: near to far again";
 }
 

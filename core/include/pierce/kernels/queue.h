@@ -61,7 +61,9 @@ class QueueKernel : public WideKernel<T, C> {
   // HitIterator::collect: no copy through next()): the first max_hits of them in order (all
   // without a hint), the rest after them in no order, since the caller asked for max_hits. A
   // depth-first pass holds its hits for next() and returns false.
-  bool begin_into(const Ray& ray, std::size_t max_hits, std::vector<Hit>& out) {
+  // Inlined into HitIterator::collect() as `filter`'s is (GCC left it out of line, a call per ray
+  // that `filter` does not make).
+  [[gnu::always_inline]] bool begin_into(const Ray& ray, std::size_t max_hits, std::vector<Hit>& out) {
     this->prepare(ray);
     hits_.clear();
     pos_ = 0;
@@ -86,8 +88,15 @@ class QueueKernel : public WideKernel<T, C> {
   // eighteenth session), so while the probes find nothing to cull they come less often. And a probe
   // runs only once a gathered ray since the last one held as many hits as the bound's depth: a ray
   // with fewer closes no bound, so depth first it would defer nothing, and where no ray holds that
-  // many (CGAL's meshes and blob at N = 15) a probe could only cost.
-  bool breadth_first() const { return gathering_ && !(until_probe_ == 1 && could_cull_); }
+  // many (CGAL's meshes and blob at N = 15) a probe could only cost. Nor where only a few do
+  // (could_cull()).
+  bool breadth_first() const { return gathering_ && !(until_probe_ == 1 && could_cull()); }
+  // A probe runs only where at least one in kProbeShare of the rays gathered since the last one
+  // could have culled. Depth first, a ray that holds fewer hits than max_hits defers nothing and
+  // only loses the breadth-first pass's latency hiding, and with more than seven such rays to each
+  // that could cull, culling cannot win back what they lose. (On CGAL's meshes at N = 5 such rays
+  // are rare, and until the twenty-sixth session one of them in an interval was enough for a probe.)
+  static constexpr std::uint64_t kProbeShare = 8;
 
   bool next(Hit& out) {
     // Nothing deferred (always after a gathering pass): every hit left is held, in order, and no
@@ -123,8 +132,10 @@ class QueueKernel : public WideKernel<T, C> {
   [[gnu::noinline]] bool begin_otherwise(std::size_t max_hits, std::vector<Hit>& out) {
     if (gathering_) {
       // A probe is due on this ray: run it, or put it one interval on.
+      const bool probe = could_cull();
       until_probe_ = probe_every_;
-      if (!could_cull_) {
+      cull_rays_ = 0;
+      if (!probe) {
         gather(max_hits, out);
         return true;
       }
@@ -138,7 +149,7 @@ class QueueKernel : public WideKernel<T, C> {
   // A gathering first pass into `out`. Unlike `filter`, it sorts only the max_hits hits the caller
   // wants: a ray with many more (hairball) is not sorted in full. A ray that holds max_hits hits
   // (1 without a hint) or more could have closed the bound, so culling could have paid on it
-  // (could_cull_); a ray that holds fewer pays only the size test for it.
+  // (cull_rays_); a ray that holds fewer pays only the size test for it.
   [[gnu::always_inline]] void gather(std::size_t max_hits, std::vector<Hit>& out) {
     const std::size_t first = out.size();
     this->gather_in_range(out);
@@ -153,7 +164,7 @@ class QueueKernel : public WideKernel<T, C> {
   // that hold fewer is laid out as `filter`'s.
   [[gnu::noinline]] void sort_first(std::vector<Hit>::iterator first, std::vector<Hit>::iterator last,
                                     std::size_t max_hits) {
-    could_cull_ = true;
+    ++cull_rays_;
     sort_first_hits(first, last, max_hits, this->order_);
   }
 
@@ -165,7 +176,7 @@ class QueueKernel : public WideKernel<T, C> {
     // The first pass, from the root (what the first next() would do, without the heap).
     this->seed_root(this->ray_.tmin, this->ray_.tmax);
     steps_ = 0;
-    could_cull_ = false;
+    cull_rays_ = 0;
     Descend p{*this};
     this->run(p);
     // What culling saved on this ray: subtrees deferred per node traversed (none where the bound
@@ -238,7 +249,11 @@ class QueueKernel : public WideKernel<T, C> {
   static constexpr std::uint64_t kNever = std::uint64_t(-1);
   bool gathering_ = false;
   std::uint64_t until_probe_ = 1;
-  bool could_cull_ = false;  // a gathering pass since the last probe held max_hits hits (1 without a hint) or more
+  // Gathering passes since the last probe (or the decision not to run one) that held max_hits hits
+  // (1 without a hint) or more: the only rays whose bound could close, so culling could pay.
+  std::uint64_t cull_rays_ = 0;
+  // Whether the probe due now could find culling worth a depth-first first pass (kProbeShare).
+  bool could_cull() const { return cull_rays_ * kProbeShare >= probe_every_; }
 };
 
 }  // namespace pierce
