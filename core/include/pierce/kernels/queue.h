@@ -86,17 +86,14 @@ class QueueKernel : public WideKernel<T, C> {
   // current. The probes cost: where no ray closes its bound (CGAL's meshes, the shell at N = 5 and
   // 15), probing every 32nd ray kept `queue` measurably behind `filter` (docs/BENCHMARKS.md,
   // eighteenth session), so while the probes find nothing to cull they come less often. And a probe
-  // runs only once a gathered ray since the last one held as many hits as the bound's depth: a ray
-  // with fewer closes no bound, so depth first it would defer nothing, and where no ray holds that
-  // many (CGAL's meshes and blob at N = 15) a probe could only cost. Nor where only a few do
-  // (could_cull()).
+  // runs only where at least one in kProbeShare of the rays gathered since the last one held as
+  // many hits as the bound's depth. A ray with fewer closes no bound: depth first it defers nothing
+  // and only loses the latency that the breadth-first pass hides, so where no ray holds that many
+  // (blob at N = 5 and 15, CGAL's meshes at N = 15) a probe could only cost, and where more than
+  // seven rays lose for each that could cull (CGAL's meshes at N = 5), culling can hardly win it
+  // back. (Until the twenty-sixth session one such ray in an interval was enough for a probe.)
   bool breadth_first() const { return gathering_ && !(until_probe_ == 1 && could_cull()); }
-  // A probe runs only where at least one in kProbeShare of the rays gathered since the last one
-  // could have culled. Depth first, a ray that holds fewer hits than max_hits defers nothing and
-  // only loses the breadth-first pass's latency hiding, and with more than seven such rays to each
-  // that could cull, culling cannot win back what they lose. (On CGAL's meshes at N = 5 such rays
-  // are rare, and until the twenty-sixth session one of them in an interval was enough for a probe.)
-  static constexpr std::uint64_t kProbeShare = 8;
+  static constexpr std::uint64_t kProbeShare = 8;  // a probe needs one ray in 8 that could cull (above)
 
   bool next(Hit& out) {
     // Nothing deferred (always after a gathering pass): every hit left is held, in order, and no
