@@ -212,9 +212,11 @@ std::size_t chunk_rays(std::size_t ray_count) {
 // Where no ray holds N hits the three do the same work, so the ratio is 1 give or take the
 // timing's noise: in the twenty-sixth session's runs, cells of the same work (`filter` at N = 5
 // and at N = 15 on blob, where no ray holds 5 hits) lay up to 9 % apart in one repetition and up
-// to 3 % in the medians of five. So
-// this timing, six cells of a few tens of milliseconds each, runs kPairedRepsPerRep times the
-// table's repetitions, which narrows its medians by about half.
+// to 3 % in the medians of five. So this timing, six cells of a few tens of milliseconds each,
+// runs kPairedRepsPerRep times the table's repetitions. That narrows what varies from repetition
+// to repetition, not an offset that holds for a whole run: with 20 repetitions, the medians of
+// `filter` at N = 5 and 15 still lay up to 4 % apart in some runs on bunny and armadillo, where
+// the two do nearly the same work.
 constexpr int kPairedRepsPerRep = 4;
 int paired_reps(const Settings& st) { return kPairedRepsPerRep * st.reps; }
 
