@@ -108,6 +108,9 @@ struct Cell {
 struct CellJob {
   std::function<Tally(Cell&, std::size_t, std::size_t)> pass;  // rays [begin, end); fills the cell's per-ray arrays
   std::function<Counters()> counters;                          // summed over the cell's iterators
+  // Gives the cell's iterators and their buffers new addresses (time_queue_pairs()); empty where
+  // the row keeps none of its own (the plain Embree rows).
+  std::function<void()> relocate;
 };
 
 struct Row {
@@ -216,7 +219,9 @@ std::size_t chunk_rays(std::size_t ray_count) {
 // runs kPairedRepsPerRep times the table's repetitions. That narrows what varies from repetition
 // to repetition, not an offset that holds for a whole run: with 20 repetitions, the medians of
 // `filter` at N = 5 and 15 still lay up to 4 % apart in some runs on bunny and armadillo, where
-// the two do nearly the same work.
+// the two do nearly the same work, and 9 % once. The offset came with where a cell's iterators
+// sat in memory, so every repetition now runs on iterators at new addresses (CellJob::relocate):
+// in three runs of blob and CGAL's meshes after that, those medians lay 0.994-1.014 apart.
 constexpr int kPairedRepsPerRep = 4;
 int paired_reps(const Settings& st) { return kPairedRepsPerRep * st.reps; }
 
@@ -240,6 +245,10 @@ void time_queue_pairs(std::vector<Row>& rows, std::size_t ray_count, const Setti
   for (int r = 0; r < paired_reps(st); ++r) {
     std::vector<double> seconds(cells.size(), 0.0);
     std::vector<Tally> tallies(cells.size());
+    // Every repetition on iterators at new addresses: where a cell's memory lands can make it a few
+    // per cent slower for as long as it stays there (a whole run, before this), so the median is
+    // taken over as many layouts as repetitions.
+    for (const Paired& p : cells) p.row->jobs[p.column].relocate();
     // The BVH back in the caches after the rows that ran on Embree's scenes.
     cells.front().row->jobs[cells.front().column].pass(cells.front().row->cells[cells.front().column], 0,
                                                        std::max<std::size_t>(1, ray_count / 16));
@@ -292,7 +301,7 @@ Row run_reference(const std::string& name, const std::vector<std::size_t>& colum
     Cell cell;
     cell.max_hits = n;
     row.cells.push_back(std::move(cell));
-    row.jobs.push_back({pass, [] { return Counters{}; }});
+    row.jobs.push_back({pass, [] { return Counters{}; }, {}});
   }
   return row;
 }
@@ -332,8 +341,11 @@ Row run_kernel(const Accel& accel, KernelKind kind, std::optional<PrefetchMode> 
     // Fresh iterators per cell so the counters of one cell never mix with another's.
     KernelOptions opts;
     opts.count = row.counted = st.count;
-    auto workers =
-        std::make_shared<Workers>([&accel, kind, opts] { return Worker{HitIterator(accel, kind, opts), {}}; });
+    auto make_workers = [&accel, kind, opts] {
+      return std::make_unique<Workers>([&accel, kind, opts] { return Worker{HitIterator(accel, kind, opts), {}}; });
+    };
+    // The cell's iterators, behind one more pointer so that relocate() can replace them.
+    auto workers = std::make_shared<std::unique_ptr<Workers>>(make_workers());
     auto pass = [workers, &rays, n, mode](Cell& cell, std::size_t begin, std::size_t end) {
       // The mode holds for every traversal of this pass, on every thread; the previous one comes
       // back after it.
@@ -341,7 +353,7 @@ Row run_kernel(const Accel& accel, KernelKind kind, std::optional<PrefetchMode> 
       if (mode) set_prefetch_mode(*mode);
       tbb::enumerable_thread_specific<Tally> local;
       tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, kGrain), [&](const auto& range) {
-        Worker& w = workers->local();
+        Worker& w = (*workers)->local();
         Tally& t = local.local();
         for (std::size_t i = range.begin(); i != range.end(); ++i) {
           w.hits.clear();
@@ -355,13 +367,25 @@ Row run_kernel(const Accel& accel, KernelKind kind, std::optional<PrefetchMode> 
     };
     auto counter_sum = [workers] {
       Counters c;
-      for (const Worker& w : *workers) c += w.it.counters();
+      for (const Worker& w : **workers) c += w.it.counters();
       return c;
+    };
+    // New iterators, made while the old ones still exist and behind a block of a random size that
+    // stays allocated, so that they land at new addresses, never at the ones just freed. The
+    // calling thread's is made now; other threads make theirs on their next pass. (Counters of
+    // the old iterators are gone: time_rows() has taken them already.)
+    auto pads = std::make_shared<std::vector<std::unique_ptr<char[]>>>();
+    auto rng = std::make_shared<std::mt19937>(std::uint32_t(n) * 7919u + std::uint32_t(kind));
+    auto relocate = [workers, pads, rng, make_workers] {
+      pads->push_back(std::make_unique<char[]>(64 * std::uniform_int_distribution<std::size_t>(1, 1024)(*rng)));
+      auto fresh = make_workers();
+      fresh->local();
+      workers->swap(fresh);
     };
     Cell cell;
     cell.max_hits = n;
     row.cells.push_back(std::move(cell));
-    row.jobs.push_back({pass, counter_sum});
+    row.jobs.push_back({pass, counter_sum, relocate});
   }
   return row;
 }
