@@ -221,7 +221,7 @@ std::size_t chunk_rays(std::size_t ray_count) {
 // `filter` at N = 5 and 15 still lay up to 4 % apart in some runs on bunny and armadillo, where
 // the two do nearly the same work, and 9 % once. The offset came with where a cell's iterators
 // sat in memory, so every repetition now runs on iterators at new addresses (CellJob::relocate):
-// in three runs of blob and CGAL's meshes after that, those medians lay 0.994-1.014 apart.
+// in five runs of blob and CGAL's meshes after that, those medians lay 0.985-1.014 apart.
 constexpr int kPairedRepsPerRep = 4;
 int paired_reps(const Settings& st) { return kPairedRepsPerRep * st.reps; }
 
