@@ -89,10 +89,14 @@ struct Cell {
   std::size_t max_hits = 0;  // 0 = all
   std::vector<double> seconds;
   double median_seconds = 0;
-  // `restart`, `queue` and `filter` at N = 5 and 15: their repetitions timed again, interleaved by
-  // chunk of rays (time_queue_pairs()); empty in every other cell.
+  // The cells behind the quoted ratios (chunked_groups()): their repetitions timed again,
+  // interleaved by chunk of rays (time_by_chunk()); empty in every other cell.
   std::vector<double> paired_seconds;
   double paired_median_seconds = 0;
+  // N = 1 and all, own-BVH kernels and `epsilon`: those repetitions were paired with plain
+  // Embree's first hit or all-hits filter, whose times of the same chunks these are.
+  std::vector<double> partner_seconds;
+  double partner_median_seconds = 0;
   Tally tally;
   bool deterministic = true;  // every repetition found the same hits
   Counters counters;          // summed over the timed repetitions
@@ -108,8 +112,7 @@ struct Cell {
 struct CellJob {
   std::function<Tally(Cell&, std::size_t, std::size_t)> pass;  // rays [begin, end); fills the cell's per-ray arrays
   std::function<Counters()> counters;                          // summed over the cell's iterators
-  // Gives the cell's iterators and their buffers new addresses (time_queue_pairs()); empty where
-  // the row keeps none of its own (the plain Embree rows).
+  // Gives the cell's iterators and their buffers new addresses (time_by_chunk(), relocator()).
   std::function<void()> relocate;
 };
 
@@ -196,7 +199,7 @@ void time_rows(std::vector<Row>& rows, std::size_t ray_count, int reps) {
     }
 }
 
-// The rays of one chunk (time_queue_pairs()): 8192 per thread, so that the end of each parallel
+// The rays of one chunk (time_by_chunk()): 8192 per thread, so that the end of each parallel
 // chunk (one thread finishing before the other) costs little, or 1/32 of the rays where that is more.
 std::size_t chunk_rays(std::size_t ray_count) {
   const auto threads =
@@ -204,75 +207,143 @@ std::size_t chunk_rays(std::size_t ray_count) {
   return std::max<std::size_t>(8192 * threads, (ray_count + 31) / 32);
 }
 
-// "queue / min(restart, filter)" compares cells whose work is the same where no ray holds N hits
-// (queue then runs filter's pass), and time_rows() times them tens of milliseconds apart: on this
-// machine the same two cells' ratio ranged over 30 % by repetition. So the cells of `restart`,
-// `queue` and `filter` at N = 5 and 15 are timed again, alone, chunk by chunk: each chunk of rays
-// through every one of them, in a new order per chunk (a fixed order would have each cell always
-// follow the same one, and start on what that one left in the branch predictors). They read the
-// same BVH, so none evicts another's data. A change of the machine's speed then falls on all of
-// them alike within milliseconds.
-// Where no ray holds N hits the three do the same work, so the ratio is 1 give or take the
-// timing's noise: in the twenty-sixth session's runs, cells of the same work (`filter` at N = 5
-// and at N = 15 on blob, where no ray holds 5 hits) lay up to 9 % apart in one repetition and up
-// to 3 % in the medians of five. So this timing, six cells of a few tens of milliseconds each,
-// runs kPairedRepsPerRep times the table's repetitions. That narrows what varies from repetition
-// to repetition, not an offset that holds for a whole run: with 20 repetitions, the medians of
-// `filter` at N = 5 and 15 still lay up to 4 % apart in some runs on bunny and armadillo, where
-// the two do nearly the same work, and 9 % once. The offset came with where a cell's iterators
-// sat in memory, so every repetition now runs on iterators at new addresses (CellJob::relocate):
-// in five runs of blob and CGAL's meshes after that, those medians lay 0.985-1.014 apart.
+// The ratios the docs quote compare cells that time_rows() times tens of milliseconds apart: on
+// this machine the same two cells' ratio ranged over 30 % by repetition, and `epsilon` over plain
+// Embree's first hit 0.64-1.39. So the cells behind them are timed again, group by group, chunk by
+// chunk: each chunk of rays through every cell of the group, in a new order per chunk (a fixed
+// order would have each cell always follow the same one, and start on what that one left in the
+// branch predictors and caches). A change of the machine's speed then falls on all of them alike
+// within milliseconds. The groups (chunked_groups()):
+//  - `restart`, `queue` and `filter` at N = 5 and 15 (queue / min(restart, filter)). Where no ray
+//    holds N hits the three do the same work, so the ratio is 1 give or take the timing's noise.
+//  - Pairs: at N = 1 every exact own-BVH kernel and `epsilon`, each with plain Embree's first hit;
+//    for all hits every exact own-BVH kernel with plain Embree's all-hits filter.
+// Pairs, not one group per column: cells that read different structures (Embree's scenes,
+// Pierce's BVH) evict each other's data, and in one group of five cells on Pierce's BVH and one on
+// Embree's scene, the Embree cell started nearly every chunk on evicted data: in the one run so
+// (twenty-seventh session) the best kernel's ratios to it read 13-26 % lower than as pairs in the
+// next run. In a pair, either cell's chunk follows the other's. And every timed chunk follows an untimed
+// pass of the same cell over the chunk's first sixteenth, as each of time_rows()' passes follows
+// one over the first sixteenth of the rays.
+// In the twenty-sixth session's runs, cells of the same work (`filter` at N = 5 and at N = 15 on
+// blob, where no ray holds 5 hits) lay up to 9 % apart in one repetition and up to 3 % in the
+// medians of five. So this timing runs kPairedRepsPerRep times the table's repetitions. That
+// narrows what varies from repetition to repetition, not an offset that holds for a whole run:
+// with 20 repetitions, the medians of `filter` at N = 5 and 15 still lay up to 4 % apart in some
+// runs on bunny and armadillo, where the two do nearly the same work, and 9 % once. The offset
+// came with where a cell's iterators sat in memory, so every repetition now runs on iterators at
+// new addresses (CellJob::relocate): in five runs of blob and CGAL's meshes after that, those
+// medians lay 0.985-1.014 apart. (Until the twenty-seventh session only the first group was
+// timed this way, without the untimed pass per chunk.)
 constexpr int kPairedRepsPerRep = 4;
 int paired_reps(const Settings& st) { return kPairedRepsPerRep * st.reps; }
 
-void time_queue_pairs(std::vector<Row>& rows, std::size_t ray_count, const Settings& st) {
-  struct Paired {
-    Row* row;
-    std::size_t column;
-  };
-  std::vector<Paired> cells;
+struct ChunkedCell {
+  Row* row;
+  std::size_t column;
+  Cell& cell() const { return row->cells[column]; }
+};
+
+// A group of time_by_chunk(). With a partner, the group is {partner, cells[0]}, and the partner's
+// times go to cells[0]'s partner_seconds.
+struct ChunkedGroup {
+  std::vector<ChunkedCell> cells;
+  std::optional<ChunkedCell> partner;
+};
+
+std::optional<ChunkedCell> cell_of(Row& row, std::size_t max_hits) {
+  for (std::size_t c = 0; c < row.cells.size(); ++c)
+    if (row.cells[c].max_hits == max_hits) return ChunkedCell{&row, c};
+  return std::nullopt;
+}
+
+// The groups of time_by_chunk().
+std::vector<ChunkedGroup> chunked_groups(std::vector<Row>& rows, const Settings& st) {
+  std::vector<ChunkedGroup> groups;
+  ChunkedGroup culling;
   for (const PrefetchMode mode : st.prefetch)
     for (const char* kernel : {"restart", "queue", "filter"})
       for (Row& row : rows)
         if (row.kernel == row_name(kernel, mode, st))
-          for (std::size_t c = 0; c < row.cells.size(); ++c)
-            if (row.cells[c].max_hits == 5 || row.cells[c].max_hits == 15) cells.push_back({&row, c});
-  if (cells.empty()) return;
+          for (const std::size_t n : {std::size_t(5), std::size_t(15)})
+            if (const auto c = cell_of(row, n)) culling.cells.push_back(*c);
+  if (culling.cells.size() > 1) groups.push_back(std::move(culling));
+  for (const std::size_t n : {std::size_t(1), std::size_t(0)}) {
+    const char* plain = n == 1 ? "embree first hit" : "embree all-hits";
+    std::optional<ChunkedCell> partner;
+    for (Row& row : rows)
+      if (row.kernel == plain) partner = cell_of(row, n);
+    if (!partner) continue;
+    for (Row& row : rows) {
+      const bool own = row.exact && !row.reference && row.kind && !uses_embree(*row.kind);
+      if (own || (n == 1 && row.kind == KernelKind::epsilon))
+        if (const auto c = cell_of(row, n)) groups.push_back({{*c}, partner});
+    }
+  }
+  return groups;
+}
+
+// One repetition of a group: its cells' seconds, summed over the chunks.
+std::vector<double> time_group_by_chunk(const std::vector<ChunkedCell>& cells, std::size_t ray_count, std::mt19937& shuffle_rng) {
   const std::size_t chunk = chunk_rays(ray_count);
   std::vector<std::size_t> order(cells.size());
   std::iota(order.begin(), order.end(), std::size_t(0));
+  std::vector<double> seconds(cells.size(), 0.0);
+  std::vector<Tally> tallies(cells.size());
+  auto pass = [](const ChunkedCell& c, std::size_t begin, std::size_t end) {
+    return c.row->jobs[c.column].pass(c.cell(), begin, end);
+  };
+  // Every repetition on iterators at new addresses: where a cell's memory lands can make it a few
+  // per cent slower for as long as it stays there (a whole run, before this), so the median is
+  // taken over as many layouts as repetitions.
+  for (const ChunkedCell& c : cells) c.row->jobs[c.column].relocate();
+  for (std::size_t begin = 0; begin < ray_count; begin += chunk) {
+    const std::size_t end = std::min(ray_count, begin + chunk);
+    std::shuffle(order.begin(), order.end(), shuffle_rng);
+    for (const std::size_t o : order) {
+      pass(cells[o], begin, begin + std::max<std::size_t>(1, (end - begin) / 16));  // untimed: see above
+      const auto t0 = Clock::now();
+      tallies[o] += pass(cells[o], begin, end);
+      seconds[o] += seconds_since(t0);
+    }
+  }
+  // The same hits as the table's repetitions (time_rows()), chunk by chunk.
+  for (std::size_t o = 0; o < cells.size(); ++o)
+    if (!(tallies[o] == cells[o].cell().tally)) cells[o].cell().deterministic = false;
+  return seconds;
+}
+
+void time_by_chunk(std::vector<Row>& rows, std::size_t ray_count, const Settings& st) {
   std::mt19937 shuffle_rng(12345);  // fixed: every run shuffles alike
-  for (int r = 0; r < paired_reps(st); ++r) {
-    std::vector<double> seconds(cells.size(), 0.0);
-    std::vector<Tally> tallies(cells.size());
-    // Every repetition on iterators at new addresses: where a cell's memory lands can make it a few
-    // per cent slower for as long as it stays there (a whole run, before this), so the median is
-    // taken over as many layouts as repetitions.
-    for (const Paired& p : cells) p.row->jobs[p.column].relocate();
-    // The BVH back in the caches after the rows that ran on Embree's scenes.
-    cells.front().row->jobs[cells.front().column].pass(cells.front().row->cells[cells.front().column], 0,
-                                                       std::max<std::size_t>(1, ray_count / 16));
-    for (std::size_t begin = 0; begin < ray_count; begin += chunk) {
-      const std::size_t end = std::min(ray_count, begin + chunk);
-      std::shuffle(order.begin(), order.end(), shuffle_rng);
-      for (const std::size_t o : order) {
-        const Paired& p = cells[o];
-        const auto t0 = Clock::now();
-        tallies[o] += p.row->jobs[p.column].pass(p.row->cells[p.column], begin, end);
-        seconds[o] += seconds_since(t0);
-      }
+  for (const ChunkedGroup& group : chunked_groups(rows, st)) {
+    std::vector<ChunkedCell> cells = group.cells;
+    if (group.partner) cells.push_back(*group.partner);
+    for (int r = 0; r < paired_reps(st); ++r) {
+      const std::vector<double> seconds = time_group_by_chunk(cells, ray_count, shuffle_rng);
+      for (std::size_t o = 0; o < group.cells.size(); ++o) group.cells[o].cell().paired_seconds.push_back(seconds[o]);
+      if (group.partner) group.cells.front().cell().partner_seconds.push_back(seconds.back());
     }
-    for (std::size_t o = 0; o < cells.size(); ++o) {
-      Cell& cell = cells[o].row->cells[cells[o].column];
-      cell.paired_seconds.push_back(seconds[o]);
-      // The same hits as the table's repetitions (time_rows()), chunk by chunk.
-      if (!(tallies[o] == cell.tally)) cell.deterministic = false;
+    for (const ChunkedCell& c : group.cells) {
+      c.cell().paired_median_seconds = median(c.cell().paired_seconds);
+      if (group.partner) c.cell().partner_median_seconds = median(c.cell().partner_seconds);
     }
   }
-  for (const Paired& p : cells) {
-    Cell& cell = p.row->cells[p.column];
-    cell.paired_median_seconds = median(cell.paired_seconds);
-  }
+}
+
+// Gives a cell's per-thread state new addresses (CellJob::relocate): `state` made anew by `make`
+// while the old one still exists, behind a block of a random size that stays allocated, so that
+// it lands at new addresses, never at the ones just freed. The calling thread's part is made now;
+// other threads make theirs on their next pass.
+template <class State, class Make>
+std::function<void()> relocator(std::shared_ptr<std::unique_ptr<State>> state, Make make, std::uint32_t seed) {
+  auto pads = std::make_shared<std::vector<std::unique_ptr<char[]>>>();
+  auto rng = std::make_shared<std::mt19937>(seed);
+  return [state, make, pads, rng] {
+    pads->push_back(std::make_unique<char[]>(64 * std::uniform_int_distribution<std::size_t>(1, 1024)(*rng)));
+    auto fresh = make();
+    fresh->local();
+    state->swap(fresh);
+  };
 }
 
 constexpr std::size_t kGrain = 256;
@@ -282,13 +353,16 @@ template <typename Query>
 Row run_reference(const std::string& name, const std::vector<std::size_t>& columns, const std::vector<Ray>& rays,
                   Query query) {
   Row row{name, false, true, std::nullopt, std::nullopt, false, {}, {}};
-  auto buffers = std::make_shared<tbb::enumerable_thread_specific<std::vector<Hit>>>();
+  using Buffers = tbb::enumerable_thread_specific<std::vector<Hit>>;
+  auto make_buffers = [] { return std::make_unique<Buffers>(); };
   for (const std::size_t n : columns) {
+    // The cell's hit buffers, behind one more pointer so that relocate() can replace them.
+    auto buffers = std::make_shared<std::unique_ptr<Buffers>>(make_buffers());
     auto pass = [buffers, query, &rays, n](Cell& cell, std::size_t begin, std::size_t end) {
       tbb::enumerable_thread_specific<Tally> local;
       tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, kGrain), [&](const auto& range) {
         Tally& t = local.local();
-        std::vector<Hit>& hits = buffers->local();
+        std::vector<Hit>& hits = (*buffers)->local();
         for (std::size_t i = range.begin(); i != range.end(); ++i) {
           hits.clear();
           query(rays[i], n, hits);
@@ -301,7 +375,7 @@ Row run_reference(const std::string& name, const std::vector<std::size_t>& colum
     Cell cell;
     cell.max_hits = n;
     row.cells.push_back(std::move(cell));
-    row.jobs.push_back({pass, [] { return Counters{}; }, {}});
+    row.jobs.push_back({pass, [] { return Counters{}; }, relocator(buffers, make_buffers, std::uint32_t(n) * 7919u + 104729u)});
   }
   return row;
 }
@@ -370,22 +444,11 @@ Row run_kernel(const Accel& accel, KernelKind kind, std::optional<PrefetchMode> 
       for (const Worker& w : **workers) c += w.it.counters();
       return c;
     };
-    // New iterators, made while the old ones still exist and behind a block of a random size that
-    // stays allocated, so that they land at new addresses, never at the ones just freed. The
-    // calling thread's is made now; other threads make theirs on their next pass. (Counters of
-    // the old iterators are gone: time_rows() has taken them already.)
-    auto pads = std::make_shared<std::vector<std::unique_ptr<char[]>>>();
-    auto rng = std::make_shared<std::mt19937>(std::uint32_t(n) * 7919u + std::uint32_t(kind));
-    auto relocate = [workers, pads, rng, make_workers] {
-      pads->push_back(std::make_unique<char[]>(64 * std::uniform_int_distribution<std::size_t>(1, 1024)(*rng)));
-      auto fresh = make_workers();
-      fresh->local();
-      workers->swap(fresh);
-    };
     Cell cell;
     cell.max_hits = n;
     row.cells.push_back(std::move(cell));
-    row.jobs.push_back({pass, counter_sum, relocate});
+    // (Counters of the old iterators are gone after a relocation: time_rows() has taken them already.)
+    row.jobs.push_back({pass, counter_sum, relocator(workers, make_workers, std::uint32_t(n) * 7919u + std::uint32_t(kind))});
   }
   return row;
 }
@@ -481,13 +544,22 @@ const Cell* find_cell(const SceneResult& r, const std::string& kernel, std::size
   return nullptr;
 }
 
+// A cell's time over its plain Embree partner's, from time_by_chunk() (0 where it had none).
+double partner_ratio(const Cell& c) {
+  return c.partner_seconds.empty() ? 0.0 : c.paired_median_seconds / c.partner_median_seconds;
+}
+
 // Fastest exact own-BVH kernel (restart, queue, nodecull, filter, buffered) in a column, among the
-// rows of one prefetch mode.
-const Row* best_exact_own(const SceneResult& r, std::size_t column, PrefetchMode mode) {
+// rows of one prefetch mode: by the table's medians, or (paired) by partner_ratio().
+const Row* best_exact_own(const SceneResult& r, std::size_t column, PrefetchMode mode, bool paired = false) {
   const Row* best = nullptr;
+  auto cost = [&](const Row& row) {
+    return paired ? partner_ratio(row.cells[column]) : row.cells[column].median_seconds;
+  };
   for (const Row& row : r.rows) {
     if (!row.exact || row.reference || !row.kind || uses_embree(*row.kind) || row.prefetch != mode) continue;
-    if (best == nullptr || row.cells[column].median_seconds < best->cells[column].median_seconds) best = &row;
+    if (paired && row.cells[column].partner_seconds.empty()) continue;
+    if (best == nullptr || cost(row) < cost(*best)) best = &row;
   }
   return best;
 }
@@ -622,12 +694,18 @@ void print_scene(const SceneResult& r, const Settings& st) {
       std::cout << (n == 1 ? ", " : "") << ratio(&best->cells[c], filter) << "x all-hits filter"
                 << (n == 0 ? spread(&best->cells[c], filter) : std::string()) << ", "
                 << ratio(&best->cells[c], find_cell(r, "embree lex-restart", n)) << "x lex-restart";
+      if (const Row* paired = n == 1 || n == 0 ? best_exact_own(r, c, mode, true) : nullptr) {
+        // From time_by_chunk(): the kernel with the lowest ratio there, which can differ from the table's best.
+        const Cell& cell = paired->cells[c];
+        std::cout << "; paired by chunk " << paired->kernel << " " << fmt("%.2f", partner_ratio(cell)) << "x "
+                  << (n == 1 ? "first hit" : "all-hits filter") << by_repetition(cell.paired_seconds, cell.partner_seconds);
+      }
       if (n == 5 || n == 15) {
         const Cell* q = find_cell(r, own("queue"), n);
         const Cell* a = find_cell(r, own("restart"), n);
         const Cell* f = find_cell(r, own("filter"), n);
         if (q && a && f && !q->paired_seconds.empty()) {
-          // From time_queue_pairs(): the three rows' cells timed again, interleaved by chunk.
+          // From time_by_chunk(): the three rows' cells timed again, interleaved by chunk.
           const Cell* better = a->paired_median_seconds < f->paired_median_seconds ? a : f;
           std::cout << "; queue / min(restart, filter) " << fmt("%.2f", q->paired_median_seconds / better->paired_median_seconds)
                     << by_repetition(q->paired_seconds, better->paired_seconds) << " (" << (better == a ? "restart" : "filter") << ", interleaved by chunk)";
@@ -636,9 +714,14 @@ void print_scene(const SceneResult& r, const Settings& st) {
       std::cout << "\n";
     }
   }
-  if (const Cell* e = find_cell(r, "epsilon", 1))
-    std::cout << "  epsilon (1 hit) " << ratio(e, find_cell(r, "embree first hit", 1)) << "x plain first hit"
-              << spread(e, find_cell(r, "embree first hit", 1)) << "\n";
+  if (const Cell* e = find_cell(r, "epsilon", 1)) {
+    const Cell* first = find_cell(r, "embree first hit", 1);
+    std::cout << "  epsilon (1 hit) " << ratio(e, first) << "x plain first hit" << spread(e, first);
+    if (!e->partner_seconds.empty())
+      std::cout << "; paired by chunk " << fmt("%.2f", partner_ratio(*e)) << "x"
+                << by_repetition(e->paired_seconds, e->partner_seconds);
+    std::cout << "\n";
+  }
   for (const std::string& p : r.problems) std::cout << "WARNING: " << p << "\n";
   std::cout.flush();
 }
@@ -683,6 +766,8 @@ json scene_json(const SceneResult& r) {
                  {"median_seconds", c.median_seconds},
                  {"paired_seconds", c.paired_seconds},
                  {"paired_median_seconds", c.paired_median_seconds},
+                 {"partner_seconds", c.partner_seconds},
+                 {"partner_median_seconds", c.partner_median_seconds},
                  {"mrays_per_s", m},
                  {"ratio_to_embree_first_hit", m / r.reference_mrays},
                  {"hits", c.tally.hits},
@@ -785,7 +870,7 @@ SceneResult run_scene(const BenchScene& s, const std::vector<KernelKind>& kernel
   }
   std::cerr << "[" << s.name << "] timing " << r.rows.size() << " rows, repetitions interleaved\n";
   time_rows(r.rows, s.rays.size(), st.reps);
-  time_queue_pairs(r.rows, s.rays.size(), st);
+  time_by_chunk(r.rows, s.rays.size(), st);
   r.reference_mrays = mrays_per_s(r.rows.front().cells[0], s.rays.size());
   check_agreement(r, st);
   count_wrong_rays(r);
@@ -922,8 +1007,9 @@ int run(int argc, char** argv) {
             << ", prefetch " << prefetch_list_text(st) << "\n"
             << "rays per scene " << ray_count << ", seed " << seed << ", " << st.reps
             << " timed repetitions per cell (median) after a warm-up on 1/8 of the rays, each after an untimed pass over 1/16;"
-               " queue / min(restart, filter) from a further "
-            << paired_reps(st) << " repetitions of those cells alone, interleaved by chunk of " << chunk_rays(ray_count) << " rays\n";
+               " the quoted ratios (N = 1 and all against plain Embree, epsilon, queue / min(restart, filter)) also from a further "
+            << paired_reps(st) << " repetitions of their cells alone, interleaved by chunk of " << chunk_rays(ray_count)
+            << " rays, each chunk after an untimed pass over its first 1/16\n";
 
   const auto start = Clock::now();
   std::vector<std::unique_ptr<BenchScene>> scenes;
