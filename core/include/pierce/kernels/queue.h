@@ -52,6 +52,10 @@ class QueueKernel : public WideKernel<T, C> {
   }
 
   void begin(const Ray& ray, std::size_t max_hits = 0) {
+    // next()'s state, which begin_into() leaves alone on a gathering pass (descend_first() resets it).
+    hits_.clear();
+    pos_ = 0;
+    deferred_.clear();
     // A gathering pass sorts only the first max_hits of hits_: next() sorts the rest if it gets there.
     const bool gathered = begin_into(ray, max_hits, hits_);
     unsorted_from_ = gathered && max_hits != 0 ? max_hits : kAllSorted;
@@ -63,14 +67,13 @@ class QueueKernel : public WideKernel<T, C> {
   // depth-first pass holds its hits for next() and returns false.
   // Inlined into HitIterator::collect() as `filter`'s is (GCC left it out of line, a call per ray
   // that `filter` does not make).
+  // A gathering pass touches nothing next() reads: its hits are all in `out`, and after
+  // HitIterator::collect no next() follows (begin() resets next()'s state itself).
   [[gnu::always_inline]] bool begin_into(const Ray& ray, std::size_t max_hits, std::vector<Hit>& out) {
     this->prepare(ray);
-    hits_.clear();
-    pos_ = 0;
-    deferred_.clear();
-    // While it gathers, this count is all a ray pays over `filter`: whether to probe is decided
-    // once per probe interval (begin_otherwise()), not per ray. It is 1 on every ray that does not
-    // gather.
+    // While it gathers, this count and gather()'s size test are all a ray pays over `filter`:
+    // whether to probe is decided once per probe interval (begin_otherwise()), not per ray. It is
+    // 1 on every ray that does not gather.
     if (--until_probe_ != 0) [[likely]] {
       // `filter`'s pass: every hit in range, nothing deferred. It runs where culling saves little,
       // and breadth first the bound would close late anyway.
@@ -168,6 +171,9 @@ class QueueKernel : public WideKernel<T, C> {
   // A depth-first first pass. The bound (depth_, bound_) is set here: after a gathering pass
   // nothing is deferred, so next() never reads it.
   void descend_first(std::size_t max_hits) {
+    hits_.clear();
+    pos_ = 0;
+    deferred_.clear();
     depth_ = max_hits == 0 ? 1 : max_hits;
     bound_ = this->ray_.tmax;
     // The first pass, from the root (what the first next() would do, without the heap).
