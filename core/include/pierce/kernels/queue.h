@@ -72,15 +72,15 @@ class QueueKernel : public WideKernel<T, C> {
   [[gnu::always_inline]] bool begin_into(const Ray& ray, std::size_t max_hits, std::vector<Hit>& out) {
     this->prepare(ray);
     // While it gathers, this count and gather()'s size test are all a ray pays over `filter`:
-    // whether to probe is decided once per probe interval (begin_otherwise()), not per ray. It is
-    // 1 on every ray that does not gather.
-    if (--until_probe_ != 0) [[likely]] {
-      // `filter`'s pass: every hit in range, nothing deferred. It runs where culling saves little,
-      // and breadth first the bound would close late anyway.
-      gather(max_hits, out);
-      return true;
+    // whether to probe is decided once per probe interval (descends()), not per ray. It is 1 on
+    // every ray that does not gather.
+    if (--until_probe_ == 0) [[unlikely]] {
+      if (descends(max_hits)) return false;
     }
-    return begin_otherwise(max_hits, out);
+    // `filter`'s pass: every hit in range, nothing deferred. It runs where culling saves little,
+    // and breadth first the bound would close late anyway.
+    gather(max_hits, out);
+    return true;
   }
 
   // Whether the next begin() runs its first pass breadth first: as the constructor fixed it, or
@@ -125,25 +125,30 @@ class QueueKernel : public WideKernel<T, C> {
   }
 
  private:
-  // begin_into() where the answer is not "gather" at once: a depth-first pass, or, on a ray due
-  // for a probe, a gathering one after all where no gathered ray held max_hits hits since the last
-  // probe. Out of line, so that begin_into()'s gathering path, which most rays take where culling
-  // saves little, stays as small as `filter`'s.
-  [[gnu::noinline]] bool begin_otherwise(std::size_t max_hits, std::vector<Hit>& out) {
+  // begin_into() at the end of a probe interval, and on every ray while first passes run depth
+  // first: runs a depth-first first pass and returns true, or returns false where the ray gathers
+  // after all (a probe is due, but too few gathered rays since the last one could cull). Out of
+  // line and without a gathering pass of its own: begin_into() has the one copy of it, as `filter`
+  // has. (Until the twenty-seventh session this function gathered itself where it skipped a probe:
+  // a second copy of the pass, run by one ray in 32 where no probe ever runs, blob at N = 5 and 15.)
+  [[gnu::noinline]] bool descends(std::size_t max_hits) {
     if (gathering_) {
       // A probe is due on this ray: run it, or put it one interval on.
       const bool probe = could_cull();
-      until_probe_ = probe_every_;
       cull_rays_ = 0;
       if (!probe) {
-        gather(max_hits, out);
-        return true;
+        // Nothing could have been culled: the next interval is twice as long, as after a probe
+        // that found little to cull (descend_first()).
+        probe_every_ = std::min(2 * probe_every_, kProbeMost);
+        until_probe_ = probe_every_;
+        return false;
       }
+      until_probe_ = probe_every_;
     } else {
       until_probe_ = 1;  // the next ray comes here too, unless descend_first() starts gathering
     }
     descend_first(max_hits);
-    return false;
+    return true;
   }
 
   // A gathering first pass into `out`. Unlike `filter`, it sorts only the max_hits hits the caller
