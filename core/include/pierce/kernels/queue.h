@@ -137,7 +137,7 @@ class QueueKernel : public WideKernel<T, C> {
       const bool probe = could_cull();
       cull_rays_ = 0;
       if (!probe) {
-        // Nothing could have been culled: the next interval is twice as long, as after a probe
+        // Too few rays could have culled: the next interval is twice as long, as after a probe
         // that found little to cull (descend_first()).
         probe_every_ = std::min(2 * probe_every_, kProbeMost);
         until_probe_ = probe_every_;
