@@ -709,6 +709,13 @@ void print_scene(const SceneResult& r, const Settings& st) {
           const Cell* better = a->paired_median_seconds < f->paired_median_seconds ? a : f;
           std::cout << "; queue / min(restart, filter) " << fmt("%.2f", q->paired_median_seconds / better->paired_median_seconds)
                     << by_repetition(q->paired_seconds, better->paired_seconds) << " (" << (better == a ? "restart" : "filter") << ", interleaved by chunk)";
+          // How finely this run resolves that ratio: `filter` ignores the hint, so its cells at
+          // N = 15 and N = 5 do the same traversal; only the bench's hashing of the hits beyond
+          // the fifth differs (none on a scene where no ray holds more than 5).
+          const Cell* f5 = find_cell(r, own("filter"), 5);
+          if (n == 15 && f5 && !f5->paired_seconds.empty() && !f->paired_seconds.empty())
+            std::cout << "; same-work control filter N = 15 / N = 5 "
+                      << fmt("%.3f", f->paired_median_seconds / f5->paired_median_seconds);
         }
       }
       std::cout << "\n";
