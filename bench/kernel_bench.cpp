@@ -12,6 +12,7 @@
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -97,6 +98,9 @@ struct Cell {
   // Embree's first hit or all-hits filter, whose times of the same chunks these are.
   std::vector<double> partner_seconds;
   double partner_median_seconds = 0;
+  // With more than one thread, N = 1 and all, own-BVH kernels and the two plain Embree rows: the
+  // cell on one thread and on all of the run's, chunk by chunk (time_scaling_by_chunk()).
+  std::vector<double> one_thread_seconds, all_threads_seconds;
   Tally tally;
   bool deterministic = true;  // every repetition found the same hits
   Counters counters;          // summed over the timed repetitions
@@ -241,6 +245,7 @@ int paired_reps(const Settings& st) { return kPairedRepsPerRep * st.reps; }
 struct ChunkedCell {
   Row* row;
   std::size_t column;
+  bool one_thread = false;  // the cell's passes on the calling thread alone (time_scaling_by_chunk())
   Cell& cell() const { return row->cells[column]; }
 };
 
@@ -290,7 +295,9 @@ std::vector<double> time_group_by_chunk(const std::vector<ChunkedCell>& cells, s
   std::iota(order.begin(), order.end(), std::size_t(0));
   std::vector<double> seconds(cells.size(), 0.0);
   std::vector<Tally> tallies(cells.size());
-  auto pass = [](const ChunkedCell& c, std::size_t begin, std::size_t end) {
+  tbb::task_arena one_thread(1);
+  auto pass = [&one_thread](const ChunkedCell& c, std::size_t begin, std::size_t end) {
+    if (c.one_thread) return one_thread.execute([&] { return c.row->jobs[c.column].pass(c.cell(), begin, end); });
     return c.row->jobs[c.column].pass(c.cell(), begin, end);
   };
   // Every repetition on iterators at new addresses: where a cell's memory lands can make it a few
@@ -326,6 +333,33 @@ void time_by_chunk(std::vector<Row>& rows, std::size_t ray_count, const Settings
     for (const ChunkedCell& c : group.cells) {
       c.cell().paired_median_seconds = median(c.cell().paired_seconds);
       if (group.partner) c.cell().partner_median_seconds = median(c.cell().partner_seconds);
+    }
+  }
+}
+
+// "2 threads >= 1.8x 1 thread" compared runs at --threads 1 and 2, taken minutes apart: in the
+// twenty-seventh session the same 2-thread run read 1.50-1.94 or 1.75-2.08 for the best kernel
+// depending on which 1-thread run it was set against, and plain Embree's rows moved as far. So a
+// run with more than one thread also times each cell of interest on one thread (a task_arena of
+// one) and on all, as a pair chunk by chunk, like the pairs above: the own-BVH kernels and plain
+// Embree's first hit at N = 1, and the own-BVH kernels and plain Embree's all-hits filter at "all".
+void time_scaling_by_chunk(std::vector<Row>& rows, std::size_t ray_count, const Settings& st) {
+  if (tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) < 2) return;
+  std::mt19937 shuffle_rng(54321);  // fixed: every run shuffles alike
+  for (Row& row : rows) {
+    const bool own = row.exact && !row.reference && row.kind && !uses_embree(*row.kind);
+    for (const std::size_t n : {std::size_t(1), std::size_t(0)}) {
+      if (!own && row.kernel != (n == 1 ? "embree first hit" : "embree all-hits")) continue;
+      const auto c = cell_of(row, n);
+      if (!c) continue;
+      ChunkedCell one = *c;
+      one.one_thread = true;
+      const std::vector<ChunkedCell> pair{one, *c};
+      for (int r = 0; r < paired_reps(st); ++r) {
+        const std::vector<double> seconds = time_group_by_chunk(pair, ray_count, shuffle_rng);
+        c->cell().one_thread_seconds.push_back(seconds[0]);
+        c->cell().all_threads_seconds.push_back(seconds[1]);
+      }
     }
   }
 }
@@ -573,6 +607,40 @@ std::string by_repetition(const std::vector<double>& a, const std::vector<double
   return " [" + fmt("%.2f", lo) + "-" + fmt("%.2f", hi) + " by repetition]";
 }
 
+// time_scaling_by_chunk()'s speed-ups: median time on one thread over median time on all.
+void print_scaling(const SceneResult& r, const Settings& st) {
+  auto speedup = [](const Cell& c) { return median(c.one_thread_seconds) / median(c.all_threads_seconds); };
+  bool any = false;
+  for (const Row& row : r.rows)
+    for (const Cell& c : row.cells) any = any || !c.one_thread_seconds.empty();
+  if (!any) return;
+  std::cout << "\nspeed-up on all threads over one (the same cells on one thread and on all, paired by chunk, "
+            << paired_reps(st) << " repetitions):\n";
+  for (const std::size_t n : {std::size_t(1), std::size_t(0)}) {
+    const Row* best = nullptr;  // the own-BVH kernel fastest on all threads
+    double lo = std::numeric_limits<double>::infinity(), hi = 0;
+    for (const Row& row : r.rows) {
+      const auto it = std::find_if(row.cells.begin(), row.cells.end(), [n](const Cell& c) { return c.max_hits == n; });
+      if (it == row.cells.end() || it->one_thread_seconds.empty() || row.reference) continue;
+      lo = std::min(lo, speedup(*it)), hi = std::max(hi, speedup(*it));
+      const auto best_cell = [n](const Row& b) {
+        return *std::find_if(b.cells.begin(), b.cells.end(), [n](const Cell& c) { return c.max_hits == n; });
+      };
+      if (!best || median(it->all_threads_seconds) < median(best_cell(*best).all_threads_seconds)) best = &row;
+    }
+    if (!best) continue;
+    const Cell& b = *find_cell(r, best->kernel, n);
+    std::cout << "  " << pad(column_title(n), 8) << "fastest own-BVH kernel " << pad(best->kernel, 9) << fmt("%.2f", speedup(b))
+              << "x" << by_repetition(b.one_thread_seconds, b.all_threads_seconds) << "; every own-BVH kernel "
+              << fmt("%.2f", lo) << "-" << fmt("%.2f", hi) << "x";
+    const char* plain = n == 1 ? "embree first hit" : "embree all-hits";
+    if (const Cell* e = find_cell(r, plain, n); e && !e->one_thread_seconds.empty())
+      std::cout << "; " << plain << " " << fmt("%.2f", speedup(*e)) << "x"
+                << by_repetition(e->one_thread_seconds, e->all_threads_seconds);
+    std::cout << "\n";
+  }
+}
+
 void print_scene(const SceneResult& r, const Settings& st) {
   const BenchScene& s = *r.scene;
   const std::size_t rays = s.rays.size();
@@ -729,6 +797,7 @@ void print_scene(const SceneResult& r, const Settings& st) {
                 << by_repetition(e->paired_seconds, e->partner_seconds);
     std::cout << "\n";
   }
+  print_scaling(r, st);
   for (const std::string& p : r.problems) std::cout << "WARNING: " << p << "\n";
   std::cout.flush();
 }
@@ -775,6 +844,8 @@ json scene_json(const SceneResult& r) {
                  {"paired_median_seconds", c.paired_median_seconds},
                  {"partner_seconds", c.partner_seconds},
                  {"partner_median_seconds", c.partner_median_seconds},
+                 {"one_thread_seconds", c.one_thread_seconds},
+                 {"all_threads_seconds", c.all_threads_seconds},
                  {"mrays_per_s", m},
                  {"ratio_to_embree_first_hit", m / r.reference_mrays},
                  {"hits", c.tally.hits},
@@ -878,6 +949,7 @@ SceneResult run_scene(const BenchScene& s, const std::vector<KernelKind>& kernel
   std::cerr << "[" << s.name << "] timing " << r.rows.size() << " rows, repetitions interleaved\n";
   time_rows(r.rows, s.rays.size(), st.reps);
   time_by_chunk(r.rows, s.rays.size(), st);
+  time_scaling_by_chunk(r.rows, s.rays.size(), st);
   r.reference_mrays = mrays_per_s(r.rows.front().cells[0], s.rays.size());
   check_agreement(r, st);
   count_wrong_rays(r);
