@@ -242,6 +242,9 @@ std::size_t chunk_rays(std::size_t ray_count) {
 constexpr int kPairedRepsPerRep = 4;
 int paired_reps(const Settings& st) { return kPairedRepsPerRep * st.reps; }
 
+// An exact kernel on Pierce's own BVH (restart, queue, nodecull, filter, buffered).
+bool exact_own(const Row& row) { return row.exact && !row.reference && row.kind && !uses_embree(*row.kind); }
+
 struct ChunkedCell {
   Row* row;
   std::size_t column;
@@ -280,8 +283,7 @@ std::vector<ChunkedGroup> chunked_groups(std::vector<Row>& rows, const Settings&
       if (row.kernel == plain) partner = cell_of(row, n);
     if (!partner) continue;
     for (Row& row : rows) {
-      const bool own = row.exact && !row.reference && row.kind && !uses_embree(*row.kind);
-      if (own || (n == 1 && row.kind == KernelKind::epsilon))
+      if (exact_own(row) || (n == 1 && row.kind == KernelKind::epsilon))
         if (const auto c = cell_of(row, n)) groups.push_back({{*c}, partner});
     }
   }
@@ -347,9 +349,8 @@ void time_scaling_by_chunk(std::vector<Row>& rows, std::size_t ray_count, const 
   if (tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) < 2) return;
   std::mt19937 shuffle_rng(54321);  // fixed: every run shuffles alike
   for (Row& row : rows) {
-    const bool own = row.exact && !row.reference && row.kind && !uses_embree(*row.kind);
     for (const std::size_t n : {std::size_t(1), std::size_t(0)}) {
-      if (!own && row.kernel != (n == 1 ? "embree first hit" : "embree all-hits")) continue;
+      if (!exact_own(row) && row.kernel != (n == 1 ? "embree first hit" : "embree all-hits")) continue;
       const auto c = cell_of(row, n);
       if (!c) continue;
       ChunkedCell one = *c;
@@ -591,7 +592,7 @@ const Row* best_exact_own(const SceneResult& r, std::size_t column, PrefetchMode
     return paired ? partner_ratio(row.cells[column]) : row.cells[column].median_seconds;
   };
   for (const Row& row : r.rows) {
-    if (!row.exact || row.reference || !row.kind || uses_embree(*row.kind) || row.prefetch != mode) continue;
+    if (!exact_own(row) || row.prefetch != mode) continue;
     if (paired && row.cells[column].partner_seconds.empty()) continue;
     if (best == nullptr || cost(row) < cost(*best)) best = &row;
   }
@@ -618,20 +619,17 @@ void print_scaling(const SceneResult& r, const Settings& st) {
             << paired_reps(st) << " repetitions):\n";
   for (const std::size_t n : {std::size_t(1), std::size_t(0)}) {
     const Row* best = nullptr;  // the own-BVH kernel fastest on all threads
+    const Cell* b = nullptr;    // its cell
     double lo = std::numeric_limits<double>::infinity(), hi = 0;
     for (const Row& row : r.rows) {
-      const auto it = std::find_if(row.cells.begin(), row.cells.end(), [n](const Cell& c) { return c.max_hits == n; });
-      if (it == row.cells.end() || it->one_thread_seconds.empty() || row.reference) continue;
-      lo = std::min(lo, speedup(*it)), hi = std::max(hi, speedup(*it));
-      const auto best_cell = [n](const Row& b) {
-        return *std::find_if(b.cells.begin(), b.cells.end(), [n](const Cell& c) { return c.max_hits == n; });
-      };
-      if (!best || median(it->all_threads_seconds) < median(best_cell(*best).all_threads_seconds)) best = &row;
+      const Cell* c = exact_own(row) ? find_cell(r, row.kernel, n) : nullptr;
+      if (c == nullptr || c->one_thread_seconds.empty()) continue;
+      lo = std::min(lo, speedup(*c)), hi = std::max(hi, speedup(*c));
+      if (!b || median(c->all_threads_seconds) < median(b->all_threads_seconds)) best = &row, b = c;
     }
-    if (!best) continue;
-    const Cell& b = *find_cell(r, best->kernel, n);
-    std::cout << "  " << pad(column_title(n), 8) << "fastest own-BVH kernel " << pad(best->kernel, 9) << fmt("%.2f", speedup(b))
-              << "x" << by_repetition(b.one_thread_seconds, b.all_threads_seconds) << "; every own-BVH kernel "
+    if (!b) continue;
+    std::cout << "  " << pad(column_title(n), 8) << "fastest own-BVH kernel " << pad(best->kernel, 9) << fmt("%.2f", speedup(*b))
+              << "x" << by_repetition(b->one_thread_seconds, b->all_threads_seconds) << "; every own-BVH kernel "
               << fmt("%.2f", lo) << "-" << fmt("%.2f", hi) << "x";
     const char* plain = n == 1 ? "embree first hit" : "embree all-hits";
     if (const Cell* e = find_cell(r, plain, n); e && !e->one_thread_seconds.empty())
