@@ -345,22 +345,33 @@ void time_by_chunk(std::vector<Row>& rows, std::size_t ray_count, const Settings
 // run with more than one thread also times each cell of interest on one thread (a task_arena of
 // one) and on all, as a pair chunk by chunk, like the pairs above: the own-BVH kernels and plain
 // Embree's first hit at N = 1, and the own-BVH kernels and plain Embree's all-hits filter at "all".
+// The pairs take turns repetition by repetition, in a new order each time. Until the
+// twenty-eighth session each pair ran its repetitions back to back; the second thread here gives
+// more in some stretches of a run than in others, so a cell read 1.42 in one run and 2.01 in the
+// next, and whichever cell ran in a slow stretch trailed the others. Taking turns spreads such a
+// stretch over every cell, Pierce's and plain Embree's alike.
 void time_scaling_by_chunk(std::vector<Row>& rows, std::size_t ray_count, const Settings& st) {
   if (tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) < 2) return;
-  std::mt19937 shuffle_rng(54321);  // fixed: every run shuffles alike
-  for (Row& row : rows) {
+  std::vector<std::vector<ChunkedCell>> pairs;  // {on one thread, on all}
+  for (Row& row : rows)
     for (const std::size_t n : {std::size_t(1), std::size_t(0)}) {
       if (!exact_own(row) && row.kernel != (n == 1 ? "embree first hit" : "embree all-hits")) continue;
       const auto c = cell_of(row, n);
       if (!c) continue;
       ChunkedCell one = *c;
       one.one_thread = true;
-      const std::vector<ChunkedCell> pair{one, *c};
-      for (int r = 0; r < paired_reps(st); ++r) {
-        const std::vector<double> seconds = time_group_by_chunk(pair, ray_count, shuffle_rng);
-        c->cell().one_thread_seconds.push_back(seconds[0]);
-        c->cell().all_threads_seconds.push_back(seconds[1]);
-      }
+      pairs.push_back({one, *c});
+    }
+  std::mt19937 shuffle_rng(54321);  // fixed: every run shuffles alike
+  std::vector<std::size_t> order(pairs.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  for (int r = 0; r < paired_reps(st); ++r) {
+    std::shuffle(order.begin(), order.end(), shuffle_rng);
+    for (const std::size_t o : order) {
+      const std::vector<double> seconds = time_group_by_chunk(pairs[o], ray_count, shuffle_rng);
+      Cell& cell = pairs[o][1].cell();
+      cell.one_thread_seconds.push_back(seconds[0]);
+      cell.all_threads_seconds.push_back(seconds[1]);
     }
   }
 }
@@ -616,7 +627,7 @@ void print_scaling(const SceneResult& r, const Settings& st) {
     for (const Cell& c : row.cells) any = any || !c.one_thread_seconds.empty();
   if (!any) return;
   std::cout << "\nspeed-up on all threads over one (the same cells on one thread and on all, paired by chunk, "
-            << paired_reps(st) << " repetitions):\n";
+            << paired_reps(st) << " repetitions, the cells taking turns):\n";
   for (const std::size_t n : {std::size_t(1), std::size_t(0)}) {
     const Row* best = nullptr;  // the own-BVH kernel fastest on all threads
     const Cell* b = nullptr;    // its cell
