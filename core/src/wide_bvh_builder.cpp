@@ -9,7 +9,7 @@
 // area) until it has eight; a range becomes a leaf at up to minLeafSize triangles, or at up to
 // wide_max_leaf_size where the SAH says a leaf is cheaper. Embree's generic rtcBuildBVH, used here
 // before, builds the same tree but was slower than Embree's own scene build by more than the issue
-// allows (docs/BENCHMARKS.md, fourteenth session).
+// allows (docs/BENCHMARKS-HISTORY.md, fourteenth session).
 #include <algorithm>
 #include <array>
 #include <cstddef>

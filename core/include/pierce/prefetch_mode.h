@@ -35,7 +35,7 @@ void set_prefetch_mode(PrefetchMode mode);
 // The automatic choice for a BVH of `bvh_bytes` (WideBvh::memory_bytes): prefetch beyond 16 MiB
 // depth first, beyond 8 MiB breadth first (`any_order`: the node processed next is the one asked
 // for longest ago, so more of each prefetch's latency is hidden and it pays on smaller BVHs). In
-// `pierce_bench_kernels --prefetch always,never` (docs/BENCHMARKS.md, nineteenth session) the
+// `pierce_bench_kernels --prefetch always,never` (docs/BENCHMARKS-HISTORY.md, nineteenth session) the
 // prefetch cost up to 8 % on CGAL's meshes and blob (up to 5.2 MiB) and up to 22 % on hairball
 // (6.3 MiB); it paid up to 35 % on blob at 7 and 8 subdivisions (19.6 and 79.7 MiB,
 // `--blob-subdivisions`) and on the shell (99.7 MiB). Where between 6.3 and 19.6 MiB it starts to

@@ -24,7 +24,7 @@
 // recent depth-first first passes, as nodes deferred per node traversed, and gathers while that is
 // small. (Until the twentieth session the breadth-first pass kept a bound too; breadth first it
 // closes late, and where it never closes `queue` trailed `filter` for the same work:
-// docs/BENCHMARKS.md, twentieth session.) The hits are the same either way: after a gathering
+// docs/BENCHMARKS-HISTORY.md, twentieth session.) The hits are the same either way: after a gathering
 // pass every hit is held and no node is deferred.
 #include <algorithm>
 #include <cstdint>
@@ -87,7 +87,7 @@ class QueueKernel : public WideKernel<T, C> {
   // (adaptive) while recent depth-first passes deferred fewer than kBreadthFirstBelow subtrees per
   // node traversed, but for every probe_every_-th ray, which runs depth first to keep that average
   // current. The probes cost: where no ray closes its bound (CGAL's meshes, the shell at N = 5 and
-  // 15), probing every 32nd ray kept `queue` measurably behind `filter` (docs/BENCHMARKS.md,
+  // 15), probing every 32nd ray kept `queue` measurably behind `filter` (docs/BENCHMARKS-HISTORY.md,
   // eighteenth session), so while the probes find nothing to cull they come less often. And a probe
   // runs only where at least one in kProbeShare of the rays gathered since the last one held as
   // many hits as the bound's depth. A ray with fewer closes no bound: depth first it defers nothing
@@ -241,7 +241,7 @@ class QueueKernel : public WideKernel<T, C> {
   NodeHeap<T> deferred_;   // nodes entered beyond the bound, nearest first
   QueueFirstPass first_pass_;
   // Between the bench scenes' figures, read from a temporary instrumented build (no bench prints
-  // them; sixteenth session, docs/BENCHMARKS.md): hairball at N = 15 defers 0.03 per node traversed
+  // them; sixteenth session, docs/BENCHMARKS-HISTORY.md): hairball at N = 15 defers 0.03 per node traversed
   // and ran faster breadth first in pierce_bench_kernels, at N = 5 0.17 and ran faster near to
   // far; blob and shell at N = 5 and 15 hold fewer hits than N and defer none.
   static constexpr float kBreadthFirstBelow = 0.08f;
