@@ -246,7 +246,7 @@ std::string cost_metric_list() { return enum_name_list<CostMetric>(); }
 int run_heatmap(const Accel& accel, KernelKind kind, CostMetric metric, const FalseColourOptions& fo,
                 const HitsOptions& o) {
   HeatmapStats stats;
-  const auto img = write_picture(o.heatmap, o.force, o.progress, fo.height, [&](const analysis::Progress& p) {
+  const auto img = write_picture(o.heatmap, o.force, o.progress, fo.height, [&](const Progress& p) {
     return render_cost_heatmap(accel, kind, o.max_hits, metric, fo, stats, p);
   });
   if (!img) return cancelled();

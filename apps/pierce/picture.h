@@ -53,7 +53,7 @@ std::optional<FalseColourImage> write_picture(const std::string& path, bool forc
 inline std::optional<FalseColourImage> write_picture(const Accel& accel, const ElementField& field,
                                                      const FalseColourOptions& fo, const std::string& path,
                                                      bool force, bool progress) {
-  return write_picture(path, force, progress, fo.height, [&](const analysis::Progress& p) {
+  return write_picture(path, force, progress, fo.height, [&](const Progress& p) {
     return render_false_colour(accel, field, fo, p);
   });
 }

@@ -338,7 +338,7 @@ Bvh<T> build_bvh(const Scene& scene, const BvhBuildOptions& opts) {
     bvh.tris.push_back({Vec3<T>(geo.vertices[t[0]]), Vec3<T>(geo.vertices[t[1]]), Vec3<T>(geo.vertices[t[2]]), r.geom, r.prim});
   };
   std::vector<std::uint32_t> order;
-  if (opts.embree_builder && double(box.max_abs_coord()) < kEmbreeBuildMaxCoord &&
+  if (opts.embree_builder && double(box.max_abs_coord()) < kEmbreeMaxCoord &&
       build_with_embree(b.refs, opts, bvh.nodes, order)) {
     bvh.tris.reserve(n);
     for (const std::uint32_t r : order) add_triangle(b.refs[r]);

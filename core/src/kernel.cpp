@@ -184,7 +184,7 @@ void collect_hits(HitIterator& it, const Ray& ray, std::size_t max_hits, std::ve
 
 bool trace_batch(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays, std::size_t max_hits,
                  std::vector<std::vector<Hit>>& result, const KernelOptions& opts,
-                 const analysis::Progress& progress) {
+                 const Progress& progress) {
   result.assign(rays.size(), {});
   tbb::enumerable_thread_specific<HitIterator> iters([&] { return HitIterator(accel, kind, opts); });
   return parallel_for_items(rays.size(), 256, iters, progress,

@@ -12,7 +12,7 @@
 #include <tuple>
 #include <unordered_map>
 
-#include "pierce/analysis/exact_predicates.h"
+#include "pierce/exact_predicates.h"
 #include "pierce/proximity.h"
 
 namespace pierce {
@@ -191,7 +191,7 @@ bool opposite_sides(const std::array<float, 6>& key, const Corners& a, const Cor
   auto side = [&](const Corners& c) {
     int s = 0;
     for (const Vec3d& p : c.v) {
-      const int o = analysis::orient2d({e0[i], e0[j]}, {e1[i], e1[j]}, {p[i], p[j]});
+      const int o = orient2d({e0[i], e0[j]}, {e1[i], e1[j]}, {p[i], p[j]});
       if (o != 0) s = o;
     }
     return s;
@@ -240,7 +240,7 @@ std::vector<std::uint32_t> coplanar_patches(const Scene& scene, const std::vecto
           const Corners a = corners_of(geo, tris[i]), b = corners_of(geo, tris[j]);
           bool coplanar = true;
           for (int k = 0; k < 3 && coplanar; ++k)
-            coplanar = analysis::orient3d(a.v[0], a.v[1], a.v[2], b.v[k]) == 0;
+            coplanar = orient3d(a.v[0], a.v[1], a.v[2], b.v[k]) == 0;
           // Only neighbours on the two sides of the shared edge: a duplicated or folded-over face
           // stays its own patch and so still limits the patch's radius (to 0).
           if (coplanar && opposite_sides(key, a, b))

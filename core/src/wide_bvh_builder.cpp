@@ -2,7 +2,7 @@
 // chooses the tree in Pierce's own build records, which are then written once into the WideNode /
 // TriBlock layout with every box recomputed exactly from the triangles in precision T. No binary
 // tree is built and nothing is collapsed. Where float boxes cannot be used (coordinates beyond
-// kEmbreeBuildMaxCoord), Pierce's precision-T binary builder and the collapse take over.
+// kEmbreeMaxCoord), Pierce's precision-T binary builder and the collapse take over.
 //
 // The tree is the one Embree's binned SAH builder makes (Wald 2007, as in Embree's
 // BVHBuilderBinnedSAH): a node takes the range's best plane, then splits its largest child (by
@@ -272,7 +272,7 @@ void build_binned(const Scene& scene, const BvhBuildOptions& opts, WideBvh<T>& o
 template <typename T>
 WideBvh<T> build_wide_bvh(const Scene& scene, const BvhBuildOptions& opts) {
   const double max_coord = scene.bounds().max_abs_coord();
-  if (opts.embree_builder && max_coord < kEmbreeBuildMaxCoord) {
+  if (opts.embree_builder && max_coord < kEmbreeMaxCoord) {
     WideBvh<T> out;
     out.scene_max_abs = max_coord;
     build_binned(scene, opts, out);

@@ -222,7 +222,7 @@ std::uint64_t cost_of(const Counters& c, CostMetric m) {
 }  // namespace
 
 FalseColourImage render_false_colour(const Accel& accel, const ElementField& field, const FalseColourOptions& opts,
-                                     const analysis::Progress& progress) {
+                                     const Progress& progress) {
   const Scene& scene = accel.scene();
   const PictureFrame fr = PictureFrame::fit(scene, opts);
   check_field(scene, field);
@@ -271,7 +271,7 @@ FalseColourImage render_false_colour(const Accel& accel, const ElementField& fie
 
 FalseColourImage render_cost_heatmap(const Accel& accel, KernelKind kernel, std::size_t max_hits, CostMetric metric,
                                      const FalseColourOptions& opts, HeatmapStats& stats,
-                                     const analysis::Progress& progress) {
+                                     const Progress& progress) {
   const PictureFrame fr = PictureFrame::fit(accel.scene(), opts);
   // First the counts (the colour range needs their maximum), then the picture.
   std::vector<std::uint64_t> cost(std::size_t(fr.view_width) * std::size_t(fr.height), 0);

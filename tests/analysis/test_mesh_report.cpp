@@ -6,7 +6,7 @@
 #include <random>
 
 #include "analysis_scenes.h"
-#include "pierce/analysis/exact_predicates.h"
+#include "pierce/exact_predicates.h"
 #include "pierce/analysis/mesh_topology.h"
 #include "pierce/analysis/mesh_report.h"
 

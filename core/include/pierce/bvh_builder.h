@@ -1,10 +1,11 @@
 #pragma once
 // Binary SAH BVH for Bvh<T>: Embree's parallel builder (rtcBuildBVH, binned SAH) into Pierce's
-// nodes where the scene's coordinates are within what Embree's builder keeps (kEmbreeBuildMaxCoord),
+// nodes where the scene's coordinates are within what Embree's builder keeps (kEmbreeMaxCoord),
 // else Pierce's own binned SAH builder (Wald 2007). Either way every node's box is then recomputed
 // from its triangles in precision T, exactly (min and max), so the tree's boxes are the exact
 // unions the kernels' conservative box test relies on; Embree only chooses the partition.
 #include "pierce/bvh.h"
+#include "pierce/embree_limits.h"
 #include "pierce/scene.h"
 
 namespace pierce {
@@ -21,9 +22,6 @@ struct BvhBuildOptions {
   bool embree_builder = true;
 };
 
-// Embree's builder drops primitives whose bounds reach its FLT_LARGE (1.844e18); beyond this the
-// own builder is used (2^59, as the Embree kernels' limit).
-inline constexpr double kEmbreeBuildMaxCoord = 0x1p59;
 
 template <typename T>
 Bvh<T> build_bvh(const Scene& scene, const BvhBuildOptions& opts = {});

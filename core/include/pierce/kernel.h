@@ -9,7 +9,8 @@
 #include <variant>
 #include <vector>
 
-#include "pierce/analysis/progress.h"
+#include "pierce/progress.h"
+#include "pierce/embree_limits.h"
 #include "pierce/kernels/all_hits.h"
 #include "pierce/kernels/buffered.h"
 #include "pierce/kernels/embree_kernels.h"
@@ -58,10 +59,6 @@ inline bool uses_embree(KernelKind k) {
   return k == KernelKind::epsilon || k == KernelKind::embree_restart || k == KernelKind::embree_filter ||
          k == KernelKind::embree_nodecull;
 }
-// Embree's BVH builder drops primitives whose bounds reach its FLT_LARGE (1.844e18), which would
-// lose hits silently; the Embree-based kernels refuse scenes with coordinates beyond this instead
-// (2^59, leaving room for the boxes' padding). Found by the kernel fuzzer.
-inline constexpr double kEmbreeMaxCoord = 0x1p59;
 
 struct KernelOptions {
   HitOrder order;
@@ -154,6 +151,6 @@ void collect_hits(HitIterator& it, const Ray& ray, std::size_t max_hits, std::ve
 // and the function returns false.
 bool trace_batch(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays, std::size_t max_hits,
                  std::vector<std::vector<Hit>>& result, const KernelOptions& opts = {},
-                 const analysis::Progress& progress = {});
+                 const Progress& progress = {});
 
 }  // namespace pierce

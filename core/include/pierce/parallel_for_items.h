@@ -11,7 +11,7 @@
 #include <atomic>
 #include <cstddef>
 
-#include "pierce/analysis/progress.h"
+#include "pierce/progress.h"
 
 namespace pierce {
 
@@ -19,7 +19,7 @@ namespace pierce {
 // callback returns false, stopped() is true and the remaining work is skipped.
 class ProgressTracker {
  public:
-  ProgressTracker(std::size_t total, const analysis::Progress& progress) : total_(total), progress_(progress) {}
+  ProgressTracker(std::size_t total, const Progress& progress) : total_(total), progress_(progress) {}
   bool stopped() const { return cancelled_.load(std::memory_order_relaxed); }
   void add(std::size_t finished) {
     const std::size_t done = done_.fetch_add(finished, std::memory_order_relaxed) + finished;
@@ -28,7 +28,7 @@ class ProgressTracker {
 
  private:
   std::size_t total_;
-  const analysis::Progress& progress_;
+  const Progress& progress_;
   std::atomic<std::size_t> done_{0};
   std::atomic<bool> cancelled_{false};
 };
@@ -37,7 +37,7 @@ class ProgressTracker {
 // calling thread's element of `states`. Returns false if the progress callback cancelled.
 template <class State, class Body>
 bool parallel_for_items(std::size_t n, std::size_t grain, tbb::enumerable_thread_specific<State>& states,
-                        const analysis::Progress& progress, Body&& body) {
+                        const Progress& progress, Body&& body) {
   ProgressTracker tracker(n, progress);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain), [&](const tbb::blocked_range<std::size_t>& r) {
     if (tracker.stopped()) return;

@@ -108,7 +108,7 @@ using WideBvhd = WideBvh<double>;
 
 // The wide BVH of the scene's non-degenerate triangles (degenerate in T: never hit), built
 // directly 8-wide by a TBB-parallel binned SAH builder on float boxes (wide_bvh_builder.cpp); where
-// float boxes cannot be used (coordinates beyond kEmbreeBuildMaxCoord, or opts.embree_builder off),
+// float boxes cannot be used (coordinates beyond kEmbreeMaxCoord, or opts.embree_builder off),
 // Pierce's binary SAH build in precision T collapsed to eight wide.
 template <typename T>
 WideBvh<T> build_wide_bvh(const Scene& scene, const BvhBuildOptions& opts = {});

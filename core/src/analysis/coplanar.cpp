@@ -7,7 +7,7 @@
 #include <tuple>
 
 #include "pierce/analysis/bvh_query.h"
-#include "pierce/analysis/exact_predicates.h"
+#include "pierce/exact_predicates.h"
 #include "pierce/analysis/polygon2d.h"
 #include "pierce/wide_bvh.h"
 #include "pierce/parallel_for_items.h"

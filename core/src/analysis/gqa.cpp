@@ -248,7 +248,7 @@ PassResult run_pass(const Accel& accel, const GqaOptions& o, int n, std::size_t 
   const double tie = tie_distance(accel.scene(), o.tie_tolerance_rel);
   PassResult res;
   // A reduction (deterministic sums), not parallel_for_items; progress and cancellation the same way.
-  const analysis::Progress pass_progress = [&](std::size_t d, std::size_t t) { return !progress || progress(n, d, t); };
+  const Progress pass_progress = [&](std::size_t d, std::size_t t) { return !progress || progress(n, d, t); };
   ProgressTracker tracker(3 * per_axis, pass_progress);
   for (int axis = 0; axis < 3; ++axis) {
     Grid g;

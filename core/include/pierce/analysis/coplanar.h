@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "pierce/analysis/progress.h"
+#include "pierce/progress.h"
 #include "pierce/scene.h"
 
 namespace pierce::analysis {

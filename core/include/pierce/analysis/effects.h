@@ -33,7 +33,7 @@
 #include <vector>
 
 #include "pierce/analysis/csg.h"
-#include "pierce/analysis/progress.h"
+#include "pierce/progress.h"
 #include "pierce/enum_names.h"
 #include "pierce/kernel.h"
 

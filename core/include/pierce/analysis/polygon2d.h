@@ -2,7 +2,7 @@
 // Convex polygon clipping and area in 2D, for overlap areas of coplanar triangles.
 #include <vector>
 
-#include "pierce/analysis/exact_predicates.h"
+#include "pierce/exact_predicates.h"
 
 namespace pierce::analysis {
 

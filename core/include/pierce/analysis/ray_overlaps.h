@@ -15,7 +15,7 @@
 #include <span>
 #include <vector>
 
-#include "pierce/analysis/progress.h"
+#include "pierce/progress.h"
 #include "pierce/kernel.h"
 
 namespace pierce::analysis {

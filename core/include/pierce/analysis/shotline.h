@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "pierce/analysis/csg.h"
-#include "pierce/analysis/progress.h"
+#include "pierce/progress.h"
 #include "pierce/kernel.h"
 
 namespace pierce::analysis {

@@ -42,7 +42,7 @@
 #include <vector>
 
 #include "pierce/analysis/exact_surface.h"
-#include "pierce/analysis/progress.h"
+#include "pierce/progress.h"
 #include "pierce/analysis/statistics.h"
 #include "pierce/kernel.h"
 #include "pierce/origin_offsets.h"

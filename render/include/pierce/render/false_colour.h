@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "pierce/analysis/progress.h"
+#include "pierce/progress.h"
 #include "pierce/enum_names.h"
 #include "pierce/kernel.h"
 
@@ -78,7 +78,7 @@ struct HeatmapStats {
 // ignored; the colour range defaults to 0 .. the maximum.
 FalseColourImage render_cost_heatmap(const Accel& accel, KernelKind kernel, std::size_t max_hits, CostMetric metric,
                                      const FalseColourOptions& opts, HeatmapStats& stats,
-                                     const analysis::Progress& progress = {});
+                                     const Progress& progress = {});
 
 // Colour of value s in [0, 1] (clamped) under the map.
 Vec3d colour_of(ColourMap map, double s);
@@ -86,7 +86,7 @@ Vec3d colour_of(ColourMap map, double s);
 // Throws std::invalid_argument on bad sizes (below 16 or above 16384 pixels per side), a zero
 // or non-finite view direction, or a field whose shape does not match the scene.
 FalseColourImage render_false_colour(const Accel& accel, const ElementField& field, const FalseColourOptions& opts = {},
-                                     const analysis::Progress& progress = {});
+                                     const Progress& progress = {});
 
 // The picture as 8-bit RGB PNG bytes.
 std::string false_colour_png(const FalseColourImage& image);

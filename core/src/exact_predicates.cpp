@@ -1,9 +1,9 @@
-#include "pierce/analysis/exact_predicates.h"
+#include "pierce/exact_predicates.h"
 
 #include <cmath>
 #include <vector>
 
-namespace pierce::analysis {
+namespace pierce {
 
 namespace {
 
@@ -126,4 +126,4 @@ int orient3d(Vec3d a, Vec3d b, Vec3d c, Vec3d d) {
   return sign(add(add(mul(ux, e0), mul(uy, e1)), mul(uz, e2)));
 }
 
-}  // namespace pierce::analysis
+}  // namespace pierce

@@ -4,7 +4,7 @@
 // coplanar" and "interiors overlap" without tolerances.
 #include "pierce/vec3.h"
 
-namespace pierce::analysis {
+namespace pierce {
 
 struct Vec2d {
   double x = 0, y = 0;
@@ -17,4 +17,4 @@ int orient2d(Vec2d a, Vec2d b, Vec2d c);
 // counter-clockwise triangle a, b, c points to, 0 when the four points are coplanar.
 int orient3d(Vec3d a, Vec3d b, Vec3d c, Vec3d d);
 
-}  // namespace pierce::analysis
+}  // namespace pierce
