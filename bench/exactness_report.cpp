@@ -221,12 +221,8 @@ int main(int argc, char** argv) {
   std::printf("\n### What double costs\n\n");
   std::printf("Kernel time over the families whose input float holds (one thread, all rays, all hits):\n\n");
   std::printf("| kernel | float (ms) | double (ms) | double / float |\n|---|---:|---:|---:|\n");
-  const std::pair<KernelKind, KernelKind> pairs[] = {{KernelKind::restart, KernelKind::restart_d},
-                                                     {KernelKind::queue, KernelKind::queue_d},
-                                                     {KernelKind::nodecull, KernelKind::nodecull_d},
-                                                     {KernelKind::filter, KernelKind::filter_d},
-                                                     {KernelKind::buffered, KernelKind::buffered_d}};
-  for (const auto& [kf, kd] : pairs) {
+  for (const KernelKind kd : kDoubleKernels) {
+    const KernelKind kf(kd.id);
     double tf = 0, td = 0;
     for (const auto& f : family_order) {
       if (!info[f].float_exact) continue;

@@ -494,7 +494,7 @@ Row run_kernel(const Accel& accel, KernelKind kind, std::optional<PrefetchMode> 
     cell.max_hits = n;
     row.cells.push_back(std::move(cell));
     // (Counters of the old iterators are gone after a relocation: time_rows() has taken them already.)
-    row.jobs.push_back({pass, counter_sum, relocator(workers, make_workers, std::uint32_t(n) * 7919u + std::uint32_t(kind))});
+    row.jobs.push_back({pass, counter_sum, relocator(workers, make_workers, std::uint32_t(n) * 7919u + 2 * std::uint32_t(kind.id) + std::uint32_t(kind.precision))});
   }
   return row;
 }

@@ -30,7 +30,7 @@ struct ClassifyCli {
   std::string points_file;
   std::vector<std::string> csg;
   std::string format;  // table | csv | json; empty: from -o's extension
-  std::string kernel = "queue";
+  std::string kernel{kernel_name(kDefaultKernel)};
   double tol = 1e-6;
   std::string out;
   bool force = false, progress = false;

@@ -30,7 +30,7 @@ struct GqaCli {
   std::uint64_t seed = 1;
   double gap_min = 0, gap_max = std::numeric_limits<double>::infinity();
   std::vector<std::string> csg;
-  std::string kernel = "queue";
+  std::string kernel{kernel_name(kDefaultKernel)};
   std::string json;
   bool force = false, progress = false;
 };

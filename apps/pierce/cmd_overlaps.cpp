@@ -35,7 +35,7 @@ struct OverlapsCli {
   double tol = 0;
   std::string rays = "axes:n=128";
   double ray_eps = 1e-5;
-  std::string kernel = "queue";
+  std::string kernel{kernel_name(kDefaultKernel)};
   std::string out;
   std::string png, png_size = "800x600", png_view = "-1,-1,-1";
   bool force = false, progress = false;

@@ -31,7 +31,7 @@ struct ShotCli {
   ModelArgs model;
   std::string from, dir, grid, rays, csg;
   std::string format = "table";
-  std::string kernel = "queue";
+  std::string kernel{kernel_name(kDefaultKernel)};
   std::string out;
   bool force = false, progress = false;
 };

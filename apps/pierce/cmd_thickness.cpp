@@ -37,7 +37,7 @@ using analysis::ThicknessResult;
 
 struct ThicknessCli {
   ModelArgs model;
-  std::string method = "ray", per = "vertex", kernel = "queue";
+  std::string method = "ray", per = "vertex", kernel{kernel_name(kDefaultKernel)};
   std::string origin_offsets = "auto", offset_set = "center";
   double min_thickness = 0;
   double max_distance = std::numeric_limits<double>::infinity();

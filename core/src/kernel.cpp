@@ -1,7 +1,10 @@
 #include "pierce/kernel.h"
 
+#include <array>
 #include <cstdio>
 #include <mutex>
+#include <optional>
+#include <type_traits>
 
 #include "pierce/bvh_builder.h"
 #include "pierce/error.h"
@@ -10,77 +13,71 @@
 namespace pierce {
 
 namespace {
-constexpr std::pair<KernelKind, std::string_view> kNames[] = {
-    {KernelKind::epsilon, "epsilon"},
-    {KernelKind::embree_restart, "embree-restart"},
-    {KernelKind::embree_filter, "embree-filter"},
-    {KernelKind::embree_nodecull, "embree-nodecull"},
-    {KernelKind::restart, "restart"},
-    {KernelKind::queue, "queue"},
-    {KernelKind::nodecull, "nodecull"},
-    {KernelKind::filter, "filter"},
-    {KernelKind::buffered, "buffered"},
-    {KernelKind::restart_d, "restart-d"},
-    {KernelKind::queue_d, "queue-d"},
-    {KernelKind::nodecull_d, "nodecull-d"},
-    {KernelKind::filter_d, "filter-d"},
-    {KernelKind::buffered_d, "buffered-d"},
-};
-
 using Impl = HitIterator::Impl;
 
-template <class C>
-HitIterator::OwnBvhKernels<C> make_own(const Accel& a, KernelKind kind, const HitOrder& o) {
-  switch (kind) {
-    case KernelKind::queue: return QueueKernel<float, C>(a.wide(), o);
-    case KernelKind::nodecull: return NodeCullKernel<float, C>(a.wide(), o);
-    case KernelKind::filter: return AllHitsKernel<float, C>(a.wide(), o);
-    case KernelKind::buffered: return BufferedKernel<float, C>(a.wide(), o);
-    case KernelKind::restart_d: return RestartKernel<double, C>(a.wide_double(), o);
-    case KernelKind::queue_d: return QueueKernel<double, C>(a.wide_double(), o);
-    case KernelKind::nodecull_d: return NodeCullKernel<double, C>(a.wide_double(), o);
-    case KernelKind::filter_d: return AllHitsKernel<double, C>(a.wide_double(), o);
-    case KernelKind::buffered_d: return BufferedKernel<double, C>(a.wide_double(), o);
-    case KernelKind::restart:
-    default: return RestartKernel<float, C>(a.wide(), o);  // the Embree kinds never get here
-  }
+template <class T>
+const WideBvh<T>& wide_bvh_of(const Accel& a) {
+  if constexpr (std::is_same_v<T, double>)
+    return a.wide_double();
+  else
+    return a.wide();
+}
+
+template <class T, class C, class... Own>
+Impl make_own(KernelTypeList<Own...>, const Accel& a, KernelId id, const HitOrder& order) {
+  std::optional<Impl> out;
+  ((Own::id == id && (out.emplace(std::in_place_type<typename Own::template type<T, C>>, wide_bvh_of<T>(a), order),
+                      true)) ||
+   ...);
+  return std::move(*out);
+}
+
+template <class... Embree>
+Impl make_embree(KernelTypeList<Embree...>, const Accel& a, KernelId id, const KernelOptions& o) {
+  std::optional<Impl> out;
+  ((Embree::id == id && (out.emplace(std::in_place_type<typename Embree::type>, a.embree(), o), true)) || ...);
+  return std::move(*out);
 }
 
 Impl make_impl(const Accel& a, KernelKind kind, const KernelOptions& o) {
-  switch (kind) {
-    case KernelKind::epsilon: return EpsilonKernel(a.embree(), o.epsilon_rel, o.count);
-    case KernelKind::embree_restart: return EmbreeRestartKernel(a.embree(), o.order, o.count);
-    case KernelKind::embree_filter: return EmbreeFilterKernel(a.embree(), o.order, o.count);
-    case KernelKind::embree_nodecull: return EmbreeNodeCullKernel(a.embree(), o.order, o.count);
-    default: {
-      auto to_impl = [](auto&& k) -> Impl { return std::move(k); };
-      if (o.count) return std::visit(to_impl, make_own<Counters>(a, kind, o.order));
-      return std::visit(to_impl, make_own<NoCounters>(a, kind, o.order));
-    }
-  }
+  if (uses_embree(kind)) return make_embree(EmbreeKernelTypes{}, a, kind.id, o);
+  const bool dbl = kind.precision == Precision::float64;
+  if (o.count)
+    return dbl ? make_own<double, Counters>(OwnBvhKernelTypes{}, a, kind.id, o.order)
+               : make_own<float, Counters>(OwnBvhKernelTypes{}, a, kind.id, o.order);
+  return dbl ? make_own<double, NoCounters>(OwnBvhKernelTypes{}, a, kind.id, o.order)
+             : make_own<float, NoCounters>(OwnBvhKernelTypes{}, a, kind.id, o.order);
+}
+
+// "<name>-d" for every kernel on Pierce's BVH, in table order.
+const std::array<std::string, std::size(kKernelTable)>& double_names() {
+  static const auto names = [] {
+    std::array<std::string, std::size(kKernelTable)> out;
+    for (std::size_t i = 0; i < out.size(); ++i)
+      if (kKernelTable[i].structure == KernelStructure::own_bvh) out[i] = std::string(kKernelTable[i].name) + "-d";
+    return out;
+  }();
+  return names;
+}
+
+std::string own_bvh_kernel_list() {
+  std::string s;
+  for (const KernelInfo& row : kKernelTable)
+    if (row.structure == KernelStructure::own_bvh) s += (s.empty() ? "" : ", ") + std::string(row.name);
+  return s;
 }
 }  // namespace
 
 std::string_view kernel_name(KernelKind k) {
-  for (const auto& [kind, name] : kNames)
-    if (kind == k) return name;
-  return "?";
-}
-
-int kernel_precision_bits(KernelKind k) {
-  switch (k) {
-    case KernelKind::restart_d:
-    case KernelKind::queue_d:
-    case KernelKind::nodecull_d:
-    case KernelKind::filter_d:
-    case KernelKind::buffered_d: return 53;
-    default: return 24;
-  }
+  if (k.precision == Precision::float64) return double_names()[std::size_t(k.id)];
+  return kernel_info(k.id).name;
 }
 
 std::optional<KernelKind> parse_kernel(std::string_view name) {
-  for (const auto& [kind, n] : kNames)
-    if (n == name) return kind;
+  for (const KernelInfo& row : kKernelTable) {
+    if (row.name == name) return KernelKind(row.id);
+    if (double_names()[std::size_t(row.id)] == name) return KernelKind(row.id, Precision::float64);
+  }
   return std::nullopt;
 }
 
@@ -123,11 +120,11 @@ std::string unsupported_reason(const Accel& accel, KernelKind kind) {
   if (!uses_embree(kind)) return {};
   const double m = accel.scene().bounds().max_abs_coord();
   if (!(m > kEmbreeMaxCoord)) return {};
-  char buf[256];
+  char buf[512];
   std::snprintf(buf, sizeof buf,
                 "kernel %s: the scene has coordinates up to %.3g, beyond what Embree's BVH holds (%.3g); "
-                "use a Pierce kernel (restart, queue, nodecull, filter, buffered) for this model",
-                std::string(kernel_name(kind)).c_str(), m, kEmbreeMaxCoord);
+                "use a Pierce kernel (%s) for this model",
+                std::string(kernel_name(kind)).c_str(), m, kEmbreeMaxCoord, own_bvh_kernel_list().c_str());
   return buf;
 }
 

@@ -54,7 +54,7 @@ class Hits:
         return f"<pierce.Hits: {len(self)} rays, {self.total} hits>"
 
 
-def trace(scene, origins, directions, *, tmin=0.0, tmax=float("inf"), kernel="queue", max_hits=0,
+def trace(scene, origins, directions, *, tmin=0.0, tmax=float("inf"), kernel=_core.DEFAULT_KERNEL, max_hits=0,
           order="geom_prim", epsilon_rel=1e-5, progress=None, cancel=None):
     """Every hit of each ray origins[i] + t * directions[i], t in [tmin, tmax], in order.
 
@@ -107,7 +107,7 @@ class Partitions:
         return f"<pierce.Partitions: {len(self)} rays, {int(self.offsets[-1])} partitions>"
 
 
-def partitions(scene, origins, directions, *, tmin=0.0, tmax=float("inf"), kernel="queue", progress=None,
+def partitions(scene, origins, directions, *, tmin=0.0, tmax=float("inf"), kernel=_core.DEFAULT_KERNEL, progress=None,
                cancel=None):
     """For each ray, the intervals [t_in, t_out] and the solids whose inside covers each (Roth 1982).
     Touching solids give adjacent intervals with no gap; a solid the ray starts inside is known."""
@@ -153,7 +153,7 @@ class Shots:
         return f"<pierce.Shots: {self.rays} rays, {len(self)} rows>"
 
 
-def shotlines(scene, origins, directions, *, tmin=0.0, tmax=float("inf"), kernel="queue", csg=None,
+def shotlines(scene, origins, directions, *, tmin=0.0, tmax=float("inf"), kernel=_core.DEFAULT_KERNEL, csg=None,
               tie_tolerance_rel=1e-6, progress=None, cancel=None):
     """Shotlines of many rays: per ray, the solids (or, with csg="union(a, b)" etc., the expression's
     regions), overlaps and gaps it passes through, with entry/exit points, line-of-sight length,
@@ -163,7 +163,7 @@ def shotlines(scene, origins, directions, *, tmin=0.0, tmax=float("inf"), kernel
     return Shots(d, scene.names)
 
 
-def shotline(scene, origin, direction, *, tmin=0.0, tmax=float("inf"), kernel="queue", csg=None):
+def shotline(scene, origin, direction, *, tmin=0.0, tmax=float("inf"), kernel=_core.DEFAULT_KERNEL, csg=None):
     """One ray's shotline rows as dicts (see Shots.rows)."""
     import numpy as np
     o = np.asarray(origin, dtype=float).reshape(1, 3)

@@ -28,6 +28,8 @@ struct HitRecord {
 // Through core's table, so the names and the ValueError's message are the CLI's.
 KernelKind kernel_from_name(const std::string& name) { return parse_kernel_or_throw(name); }
 
+std::string default_kernel_name() { return std::string(kernel_name(kDefaultKernel)); }
+
 TieOrder tie_from_name(const std::string& name) { return parse_enum_or_throw<TieOrder>(name); }
 
 void bind_hits(pyb::module_& m) {
@@ -39,6 +41,7 @@ void bind_hits(pyb::module_& m) {
       pyb::arg("include_double") = false,
       "Names of the kernels; all but 'epsilon' are exact and agree. include_double adds the kernels on a\n"
       "double-precision BVH, whose answers can differ where the input is not representable in float.");
+  m.attr("DEFAULT_KERNEL") = default_kernel_name();
   m.def("is_exact", [](const std::string& name) { return is_exact(kernel_from_name(name)); }, pyb::arg("kernel"));
 
   m.def(
@@ -78,7 +81,7 @@ void bind_hits(pyb::module_& m) {
         return pyb::make_tuple(out, offsets);
       },
       pyb::arg("scene"), pyb::arg("origins"), pyb::arg("directions"), pyb::kw_only(), pyb::arg("tmin") = 0.0,
-      pyb::arg("tmax") = std::numeric_limits<double>::infinity(), pyb::arg("kernel") = "queue",
+      pyb::arg("tmax") = std::numeric_limits<double>::infinity(), pyb::arg("kernel") = default_kernel_name(),
       pyb::arg("max_hits") = 0, pyb::arg("order") = "geom_prim", pyb::arg("epsilon_rel") = 1e-5,
       pyb::arg("progress") = pyb::none(), pyb::arg("cancel") = nullptr,
       "Low-level: returns (hits, offsets); ray i's hits are hits[offsets[i]:offsets[i+1]].");

@@ -195,7 +195,7 @@ void bind_overlaps(pyb::module_& m) {
       },
       pyb::arg("scene"), pyb::arg("origins") = pyb::none(), pyb::arg("directions") = pyb::none(), pyb::kw_only(),
       pyb::arg("tmin") = 0.0, pyb::arg("tmax") = std::numeric_limits<double>::infinity(), pyb::arg("grid") = 64,
-      pyb::arg("axes") = std::vector<int>{0, 1, 2}, pyb::arg("kernel") = "queue", pyb::arg("epsilon_rel") = 1e-5,
+      pyb::arg("axes") = std::vector<int>{0, 1, 2}, pyb::arg("kernel") = default_kernel_name(), pyb::arg("epsilon_rel") = 1e-5,
       pyb::arg("tie_tolerance_rel") = 1e-6, pyb::arg("keep_intervals") = true, pyb::arg("progress") = pyb::none(),
       pyb::arg("cancel") = nullptr,
       "Solid-solid interference along rays (BRL-CAD's OVERLAP report), contacts, and the coplanar-hit\n"

@@ -113,7 +113,7 @@ void bind_partitions(pyb::module_& m) {
         return d;
       },
       pyb::arg("scene"), pyb::arg("origins"), pyb::arg("directions"), pyb::kw_only(), pyb::arg("tmin") = 0.0,
-      pyb::arg("tmax") = std::numeric_limits<double>::infinity(), pyb::arg("kernel") = "queue",
+      pyb::arg("tmax") = std::numeric_limits<double>::infinity(), pyb::arg("kernel") = default_kernel_name(),
       pyb::arg("progress") = pyb::none(), pyb::arg("cancel") = nullptr,
       "Low-level: dict with 'partitions' (structured array, by ray then t), 'solids', 'offsets' (ray i's\n"
       "partitions are partitions[offsets[i]:offsets[i+1]]), 'unmatched_leaves' and 'unclosed' per ray.");

@@ -95,7 +95,7 @@ void bind_shotline(pyb::module_& m) {
         return shot_arrays(result);
       },
       pyb::arg("scene"), pyb::arg("origins"), pyb::arg("directions"), pyb::kw_only(), pyb::arg("tmin") = 0.0,
-      pyb::arg("tmax") = std::numeric_limits<double>::infinity(), pyb::arg("kernel") = "queue",
+      pyb::arg("tmax") = std::numeric_limits<double>::infinity(), pyb::arg("kernel") = default_kernel_name(),
       pyb::arg("csg") = pyb::none(), pyb::arg("tie_tolerance_rel") = 1e-6, pyb::arg("progress") = pyb::none(),
       pyb::arg("cancel") = nullptr, "Low-level: see pierce.shotlines.");
 
@@ -123,7 +123,7 @@ void bind_shotline(pyb::module_& m) {
         std::copy(cls.begin(), cls.end(), a.mutable_data());
         return a;
       },
-      pyb::arg("scene"), pyb::arg("points"), pyb::arg("csg"), pyb::kw_only(), pyb::arg("kernel") = "queue",
+      pyb::arg("scene"), pyb::arg("points"), pyb::arg("csg"), pyb::kw_only(), pyb::arg("kernel") = default_kernel_name(),
       pyb::arg("tolerance_rel") = 1e-6, pyb::arg("progress") = pyb::none(), pyb::arg("cancel") = nullptr,
       "Per point: 0 outside, 1 inside, 2 on the boundary of the CSG expression (POINT_CLASSES).");
   m.attr("POINT_CLASSES") = pyb::make_tuple("outside", "inside", "on");
@@ -195,7 +195,7 @@ void bind_shotline(pyb::module_& m) {
         return result;
       },
       pyb::arg("scene"), pyb::kw_only(), pyb::arg("tolerance") = 1e-3, pyb::arg("start_n") = 0,
-      pyb::arg("max_n") = 1024, pyb::arg("kernel") = "queue", pyb::arg("regions") = std::vector<std::string>{},
+      pyb::arg("max_n") = 1024, pyb::arg("kernel") = default_kernel_name(), pyb::arg("regions") = std::vector<std::string>{},
       pyb::arg("tie_tolerance_rel") = 1e-6, pyb::arg("gap_min") = 0.0,
       pyb::arg("gap_max") = std::numeric_limits<double>::infinity(), pyb::arg("progress") = pyb::none(),
       pyb::arg("cancel") = nullptr,

@@ -154,7 +154,7 @@ void bind_thickness(pyb::module_& m) {
       pyb::arg("scene"), pyb::kw_only(), pyb::arg("method") = "ray", pyb::arg("per") = "vertex",
       pyb::arg("max_distance") = std::numeric_limits<double>::infinity(), pyb::arg("min_thickness") = 0.0,
       pyb::arg("cone_rays") = 30, pyb::arg("cone_angle") = 120.0, pyb::arg("cone_aggregate") = "shapira",
-      pyb::arg("sphere_max_iterations") = 100, pyb::arg("tie_tolerance_rel") = 1e-6, pyb::arg("kernel") = "queue",
+      pyb::arg("sphere_max_iterations") = 100, pyb::arg("tie_tolerance_rel") = 1e-6, pyb::arg("kernel") = default_kernel_name(),
       pyb::arg("solids") = std::vector<std::uint32_t>{}, pyb::arg("percentiles") = pyb::none(),
       pyb::arg("histogram_bins") = 20, pyb::arg("progress") = pyb::none(), pyb::arg("cancel") = nullptr,
       "Wall thickness per vertex or per face of the given solids (all when empty); the other solids take part\n"
@@ -211,7 +211,7 @@ void bind_thickness(pyb::module_& m) {
       pyb::arg("method") = "ray", pyb::arg("max_distance") = std::numeric_limits<double>::infinity(),
       pyb::arg("min_thickness") = 0.0, pyb::arg("cone_rays") = 30, pyb::arg("cone_angle") = 120.0,
       pyb::arg("cone_aggregate") = "shapira", pyb::arg("sphere_max_iterations") = 100,
-      pyb::arg("tie_tolerance_rel") = 1e-6, pyb::arg("kernel") = "queue", pyb::arg("percentiles") = pyb::none(),
+      pyb::arg("tie_tolerance_rel") = 1e-6, pyb::arg("kernel") = default_kernel_name(), pyb::arg("percentiles") = pyb::none(),
       pyb::arg("histogram_bins") = 20, pyb::arg("progress") = pyb::none(), pyb::arg("cancel") = nullptr,
       "Thickness at given points (N, 3) of solids (one id or one per point), like a caliper: each point is\n"
       "projected onto its solid's boundary (on CAD input onto the exact B-rep face) and measured there along\n"
@@ -256,7 +256,7 @@ void bind_thickness(pyb::module_& m) {
       },
       pyb::arg("scene"), pyb::arg("geoms"), pyb::arg("points"), pyb::arg("inward"), pyb::kw_only(),
       pyb::arg("max_distance") = std::numeric_limits<double>::infinity(), pyb::arg("tie_tolerance_rel") = 1e-6,
-      pyb::arg("kernel") = "queue", pyb::arg("progress") = pyb::none(), pyb::arg("cancel") = nullptr,
+      pyb::arg("kernel") = default_kernel_name(), pyb::arg("progress") = pyb::none(), pyb::arg("cancel") = nullptr,
       "Ray thickness at given surface points of solid geoms (one id or one per point) along given inward\n"
       "directions (normalised here): distance to where the ray leaves that solid, NaN if it does not.");
 }

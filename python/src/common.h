@@ -90,6 +90,8 @@ auto readonly_column(std::vector<Element> Owner::*column) {
 }
 
 KernelKind kernel_from_name(const std::string& name);
+// kDefaultKernel's name: the default of every `kernel` argument.
+std::string default_kernel_name();
 TieOrder tie_from_name(const std::string& name);
 
 // Rays from (N, 3) origins and directions and a scalar or per-ray tmin/tmax; InputError names

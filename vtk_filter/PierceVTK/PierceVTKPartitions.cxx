@@ -139,7 +139,7 @@ bool ClassifyRays(const pierce::Scene& scene, const std::vector<pierce::Ray>& ra
     const std::size_t end = std::min(rays.size(), begin + kChunk);
     lines.clear();
     for (std::size_t i = begin; i < end; ++i) lines.push_back(pierce::full_line_ray(rays[i], scene.bounds()));
-    const bool completed = pierce::trace_batch(accel, pierce::KernelKind::queue, lines, 0, hits, options,
+    const bool completed = pierce::trace_batch(accel, pierce::kDefaultKernel, lines, 0, hits, options,
                                                [&](std::size_t done, std::size_t) { return progress.Report(begin + done, rays.size()); });
     if (!completed || progress.CheckAbort()) return false;
     for (std::size_t i = begin; i < end; ++i) {

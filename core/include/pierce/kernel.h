@@ -1,77 +1,70 @@
 #pragma once
 // The kernels behind one iterator API: begin(ray[, max_hits]) then next(hit) until false.
-// Every kernel except `epsilon` returns exactly the same hits in the same total order.
-#include <functional>
+// Every exact kernel returns exactly the same hits in the same total order (kernel_kind.h lists
+// them and says which are exact).
 #include <memory>
-#include <optional>
 #include <string>
-#include <string_view>
 #include <variant>
 #include <vector>
 
-#include "pierce/progress.h"
 #include "pierce/embree_limits.h"
+#include "pierce/kernel_kind.h"
+#include "pierce/kernel_options.h"
 #include "pierce/kernels/all_hits.h"
 #include "pierce/kernels/buffered.h"
 #include "pierce/kernels/embree_kernels.h"
 #include "pierce/kernels/node_cull.h"
 #include "pierce/kernels/queue.h"
 #include "pierce/kernels/restart.h"
+#include "pierce/progress.h"
 #include "pierce/wide_bvh.h"
 
 namespace pierce {
 
-enum class KernelKind {
-  epsilon,
-  embree_restart,
-  embree_filter,
-  embree_nodecull,
-  restart,
-  queue,
-  nodecull,
-  filter,
-  buffered,
-  // The same kernels on a double-precision BVH of the double input (built on first use).
-  restart_d,
-  queue_d,
-  nodecull_d,
-  filter_d,
-  buffered_d,
+// The kernel types, one entry per row of kKernelTable. A kernel on Pierce's BVH is a template on
+// its precision T and its counters policy C; an Embree kernel is one class that counts at run time.
+template <KernelId Id, template <class T, class C> class Kernel>
+struct OwnBvhKernel {
+  static constexpr KernelId id = Id;
+  template <class T, class C>
+  using type = Kernel<T, C>;
 };
-
-inline constexpr KernelKind kAllKernels[] = {
-    KernelKind::epsilon,  KernelKind::embree_restart, KernelKind::embree_filter,
-    KernelKind::embree_nodecull, KernelKind::restart, KernelKind::queue,
-    KernelKind::nodecull, KernelKind::filter,         KernelKind::buffered,
+template <KernelId Id, class Kernel>
+struct EmbreeKernel {
+  static constexpr KernelId id = Id;
+  using type = Kernel;
 };
+template <class... Entries>
+struct KernelTypeList {};
 
-// Not in kAllKernels: double precision answers for the double input, which can differ from
-// the float kernels' answers where the input is not representable in float.
-inline constexpr KernelKind kDoubleKernels[] = {KernelKind::restart_d, KernelKind::queue_d, KernelKind::nodecull_d,
-                                                KernelKind::filter_d, KernelKind::buffered_d};
+using OwnBvhKernelTypes =
+    KernelTypeList<OwnBvhKernel<KernelId::restart, RestartKernel>, OwnBvhKernel<KernelId::queue, QueueKernel>,
+                   OwnBvhKernel<KernelId::nodecull, NodeCullKernel>, OwnBvhKernel<KernelId::filter, AllHitsKernel>,
+                   OwnBvhKernel<KernelId::buffered, BufferedKernel>>;
+using EmbreeKernelTypes =
+    KernelTypeList<EmbreeKernel<KernelId::epsilon, EpsilonKernel>,
+                   EmbreeKernel<KernelId::embree_restart, EmbreeRestartKernel>,
+                   EmbreeKernel<KernelId::embree_filter, EmbreeFilterKernel>,
+                   EmbreeKernel<KernelId::embree_nodecull, EmbreeNodeCullKernel>>;
 
-std::string_view kernel_name(KernelKind k);
-// Significand bits of the kernel's arithmetic: 24 (float) or 53 (double).
-int kernel_precision_bits(KernelKind k);
-std::optional<KernelKind> parse_kernel(std::string_view name);
-inline bool is_exact(KernelKind k) { return k != KernelKind::epsilon; }
-inline bool uses_embree(KernelKind k) {
-  return k == KernelKind::epsilon || k == KernelKind::embree_restart || k == KernelKind::embree_filter ||
-         k == KernelKind::embree_nodecull;
-}
-
-struct KernelOptions {
-  HitOrder order;
-  double epsilon_rel = 1e-5;  // epsilon kernel only: relative to the scene diagonal
-  // The counting variant of the kernel: HitIterator::counters() then reports its work (node tests,
-  // traversal steps, primitive tests, valid hits). Off, counting costs nothing.
-  bool count = false;
+namespace detail {
+// One flat variant of every kernel type (own-BVH ones at both precisions, plain and counting), so
+// that a call dispatches once.
+template <class Own, class Embree>
+struct KernelVariant;
+template <class... Own, class... Embree>
+struct KernelVariant<KernelTypeList<Own...>, KernelTypeList<Embree...>> {
+  using type = std::variant<typename Embree::type..., typename Own::template type<float, NoCounters>...,
+                            typename Own::template type<double, NoCounters>...,
+                            typename Own::template type<float, Counters>...,
+                            typename Own::template type<double, Counters>...>;
 };
+}  // namespace detail
 
 // A scene with the acceleration structures the kernels need. The float wide BVH is built with the
 // Accel (every Pierce kernel uses it), directly eight wide: no binary tree is built for it. The
 // rest is built on first use (thread-safe): the binary float BVH (Embree's exact
-// user geometry), the double wide BVH (the *_d kernels, CSG) and Embree's scenes (embree-*,
+// user geometry), the double wide BVH (the double-precision kernels, CSG) and Embree's scenes (embree-*,
 // epsilon). So a run of an own-BVH kernel builds no Embree scene, no double BVH and no binary tree.
 class Accel {
  public:
@@ -85,7 +78,7 @@ class Accel {
   // The binary float BVH, built on the first call.
   const Bvhf& bvh() const;
   const EmbreeAccel& embree() const;
-  // The double-precision wide BVH (the *_d kernels, CSG's box queries), built on the first call.
+  // The double-precision wide BVH (the double-precision kernels, CSG's box queries), built on the first call.
   const WideBvhd& wide_double() const;
   // Bytes held by the structures built so far.
   std::size_t memory_bytes() const;
@@ -103,17 +96,6 @@ class Accel {
 // beyond kEmbreeMaxCoord). HitIterator throws InputError with this message.
 std::string unsupported_reason(const Accel& accel, KernelKind kind);
 
-namespace detail {
-template <class... V>
-struct VariantCat;
-template <class... A, class... B, class... C>
-struct VariantCat<std::variant<A...>, std::variant<B...>, std::variant<C...>> {
-  using type = std::variant<A..., B..., C...>;
-};
-template <class... V>
-using variant_cat_t = typename VariantCat<V...>::type;
-}  // namespace detail
-
 class HitIterator {
  public:
   HitIterator(const Accel& accel, KernelKind kind, const KernelOptions& opts = {});
@@ -127,15 +109,7 @@ class HitIterator {
   // The work done since construction; all zero unless constructed with KernelOptions::count.
   Counters counters() const;
 
-  // Every kernel; those on Pierce's BVH in their plain and their counting variant (the Embree
-  // ones decide at run time), in one flat variant so that a call dispatches once.
-  template <class C>
-  using OwnBvhKernels = std::variant<RestartKernel<float, C>, QueueKernel<float, C>, NodeCullKernel<float, C>,
-                                     AllHitsKernel<float, C>, BufferedKernel<float, C>, RestartKernel<double, C>,
-                                     QueueKernel<double, C>, NodeCullKernel<double, C>, AllHitsKernel<double, C>,
-                                     BufferedKernel<double, C>>;
-  using EmbreeKernels = std::variant<EpsilonKernel, EmbreeRestartKernel, EmbreeFilterKernel, EmbreeNodeCullKernel>;
-  using Impl = detail::variant_cat_t<EmbreeKernels, OwnBvhKernels<NoCounters>, OwnBvhKernels<Counters>>;
+  using Impl = detail::KernelVariant<OwnBvhKernelTypes, EmbreeKernelTypes>::type;
 
  private:
   KernelKind kind_;

@@ -96,7 +96,7 @@ inline std::string_view point_class_name(PointClass c);  // enum_name (its table
 class PointClassifier {
  public:
   // tolerance = tie_distance(scene, tolerance_rel) (tie_distance.h). The kernel must be exact.
-  PointClassifier(const Accel& accel, const CsgExpr& expr, KernelKind kernel = KernelKind::queue,
+  PointClassifier(const Accel& accel, const CsgExpr& expr, KernelKind kernel = kDefaultKernel,
                   double tolerance_rel = 1e-6);
   PointClass classify(Vec3d point);
   double tolerance() const { return tolerance_; }

@@ -69,7 +69,7 @@ struct EffectsConfig {
   double penetration_energy = 1;   // initial energy, > 0
   std::optional<CsgExpr> classification_csg;  // classification: the expression's intervals instead
   double tie_tolerance_rel = 1e-6;  // overlaps shorter than tie_distance() are contacts; classification snaps
-  KernelKind kernel = KernelKind::queue;
+  KernelKind kernel = kDefaultKernel;
   bool audit = false;  // also count the hits that exist along each ray (a second, full traversal)
   int timing_stride = 16;  // time the effects on every k-th ray (0: never) and extrapolate
 

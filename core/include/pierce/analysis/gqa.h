@@ -38,7 +38,7 @@ struct GqaOptions {
   double tolerance = 1e-3;  // relative, > 0
   int start_n = 0;          // first grid size; 0 = chosen so the thinnest solid spans >= 4 cells
   int max_n = 1024;         // no pass beyond this grid size
-  KernelKind kernel = KernelKind::queue;  // any exact kernel gives the same result
+  KernelKind kernel = kDefaultKernel;  // any exact kernel gives the same result
   std::vector<CsgExpr> regions;           // CSG expressions measured like solids
   // Partitions and gaps shorter than tie_distance(scene, tie_tolerance_rel) (tie_distance.h) are
   // float noise between touching solids and are snapped away (snap_partitions).

@@ -21,7 +21,7 @@
 namespace pierce::analysis {
 
 struct RayOverlapOptions {
-  KernelKind kernel = KernelKind::queue;  // any exact kernel gives the same result
+  KernelKind kernel = kDefaultKernel;  // any exact kernel gives the same result
   double epsilon_rel = 1e-5;              // Gribble's epsilon, relative to the scene diagonal
   // Crossings closer together than this (relative, see tie_distance.h) happen at
   // the same place: a solid leaving and another entering there touch rather than overlap.

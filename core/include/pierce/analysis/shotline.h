@@ -35,7 +35,7 @@ struct ShotRow {
 };
 
 struct ShotOptions {
-  KernelKind kernel = KernelKind::queue;  // any exact kernel gives the same rows
+  KernelKind kernel = kDefaultKernel;  // any exact kernel gives the same rows
   const CsgExpr* csg = nullptr;           // regions instead of solid partitions when set
   // Partitions and gaps shorter than tie_distance(scene, tie_tolerance_rel) (tie_distance.h) are
   // float noise between touching solids and are snapped away (snap_partitions).

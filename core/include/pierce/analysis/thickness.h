@@ -70,7 +70,7 @@ struct ThicknessOptions {
   // tie_distance()) belong to the surface the ray starts on and are skipped; crossings of the
   // same solid closer together than this are treated as simultaneous.
   double tie_tolerance_rel = 1e-6;
-  KernelKind kernel = KernelKind::queue;  // any exact kernel gives the same result
+  KernelKind kernel = kDefaultKernel;  // any exact kernel gives the same result
   // Ray and cone rays from face samples start where they leave an empty hemisphere on their
   // triangle (origin_offsets.h; vertex samples lie on every hemisphere's rim and gain nothing).
   // Off by default: building the hemispheres costs more than they save on every model measured
@@ -161,7 +161,7 @@ struct ThicknessAlong {
 };
 ThicknessAlong thickness_along(const Accel& accel, const std::vector<std::uint32_t>& geoms,
                                const std::vector<Ray>& rays, double max_distance, double tie_tolerance_rel = 1e-6,
-                               KernelKind kernel = KernelKind::queue, const Progress& progress = {});
+                               KernelKind kernel = kDefaultKernel, const Progress& progress = {});
 
 // Thickness at given points (`pierce thickness --at`): each point is projected onto the boundary
 // of its solid (the closest point of its triangles; on CAD input then onto the exact face) and

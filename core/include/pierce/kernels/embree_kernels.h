@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "pierce/embree_accel.h"
+#include "pierce/kernel_options.h"
 #include "pierce/kernels/embree_query.h"
 
 namespace pierce {
@@ -48,6 +49,7 @@ class EmbreeRestartKernel : public EmbreeExactBase {
  public:
   explicit EmbreeRestartKernel(const EmbreeAccel& acc, HitOrder order = {}, bool count = false)
       : EmbreeExactBase(acc, order, EmbreeQuery::Mode::restart, count) {}
+  EmbreeRestartKernel(const EmbreeAccel& acc, const KernelOptions& o) : EmbreeRestartKernel(acc, o.order, o.count) {}
   void begin(const Ray& ray, std::size_t max_hits = 0);
   bool next(Hit& out);
 };
@@ -56,6 +58,7 @@ class EmbreeFilterKernel : public EmbreeExactBase {
  public:
   explicit EmbreeFilterKernel(const EmbreeAccel& acc, HitOrder order = {}, bool count = false)
       : EmbreeExactBase(acc, order, EmbreeQuery::Mode::all, count) {}
+  EmbreeFilterKernel(const EmbreeAccel& acc, const KernelOptions& o) : EmbreeFilterKernel(acc, o.order, o.count) {}
   void begin(const Ray& ray, std::size_t max_hits = 0);
   bool next(Hit& out);
 
@@ -68,6 +71,7 @@ class EmbreeNodeCullKernel : public EmbreeExactBase {
  public:
   explicit EmbreeNodeCullKernel(const EmbreeAccel& acc, HitOrder order = {}, bool count = false)
       : EmbreeExactBase(acc, order, EmbreeQuery::Mode::closest_n, count) {}
+  EmbreeNodeCullKernel(const EmbreeAccel& acc, const KernelOptions& o) : EmbreeNodeCullKernel(acc, o.order, o.count) {}
   void begin(const Ray& ray, std::size_t max_hits = 0);
   bool next(Hit& out);
 
@@ -84,6 +88,7 @@ class EmbreeNodeCullKernel : public EmbreeExactBase {
 class EpsilonKernel {
  public:
   explicit EpsilonKernel(const EmbreeAccel& acc, double epsilon_rel = 1e-5, bool count = false);
+  EpsilonKernel(const EmbreeAccel& acc, const KernelOptions& o) : EpsilonKernel(acc, o.epsilon_rel, o.count) {}
 
   void begin(const Ray& ray, std::size_t /*max_hits*/ = 0) {
     query_ = native_rayhit(ray, float(std::max(0.0, ray.tmin)));

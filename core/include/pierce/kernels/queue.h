@@ -22,10 +22,9 @@
 // first hides the latency of each node behind the others. Which rays are which is not known in
 // advance, so by default (QueueFirstPass::adaptive) the kernel measures what culling saved on its
 // recent depth-first first passes, as nodes deferred per node traversed, and gathers while that is
-// small. (Until the twentieth session the breadth-first pass kept a bound too; breadth first it
-// closes late, and where it never closes `queue` trailed `filter` for the same work:
-// docs/BENCHMARKS-HISTORY.md, twentieth session.) The hits are the same either way: after a gathering
-// pass every hit is held and no node is deferred.
+// small (QueueScheduler, below). The gathering pass keeps no bound: breadth first it would close
+// late. The hits are the same either way: after a gathering pass every hit is held and no node is
+// deferred.
 #include <algorithm>
 #include <cstdint>
 #include <vector>
@@ -36,6 +35,90 @@ namespace pierce {
 
 enum class QueueFirstPass { adaptive, depth_first, breadth_first };
 
+// The knobs of `queue`'s schedule, in one place. They change only the time, never the hits.
+// `pierce_bench_kernels --kernels queue,filter,restart --max-hits 5,15` shows their effect: where
+// no ray closes its bound (blob, CGAL's meshes, the shell at N = 5 and 15) `queue` must tie with
+// `filter`, and where culling pays (plates, hairball at N = 5) it must beat it.
+struct QueueKnobs {
+  // An adaptive kernel gathers while its depth-first passes defer fewer subtrees than this per
+  // node traversed. Between the bench scenes: hairball at N = 15 defers 0.03 and runs faster
+  // breadth first, at N = 5 0.17 and runs faster near to far.
+  float breadth_first_below = 0.08f;
+  // Weight of each depth-first pass in that running average: it follows the last few dozen.
+  float average_weight = 1.0f / 32.0f;
+  // While it gathers, every probe_every-th ray still runs depth first to keep the average current;
+  // the interval (a power of two) doubles while probes find little to cull, up to probe_most, and
+  // returns to probe_least when one finds more.
+  std::uint64_t probe_least = 32, probe_most = 256;
+  // A probe runs only where at least one in probe_share of the rays gathered since the last one
+  // held as many hits as the bound's depth: a ray with fewer closes no bound, so depth first it
+  // defers nothing and only loses the latency that the breadth-first pass hides.
+  std::uint64_t probe_share = 8;
+};
+inline constexpr QueueKnobs kQueueKnobs{};
+
+// Chooses each ray's first pass: depth first (near to far, deferring what lies beyond the bound)
+// or gathering (`filter`'s pass: breadth first, every hit in range). Fixed by QueueFirstPass, or
+// adaptive: measured on the recent depth-first passes, with probes while it gathers.
+class QueueScheduler {
+ public:
+  explicit QueueScheduler(QueueFirstPass mode)
+      : mode_(mode), gathering_(mode == QueueFirstPass::breadth_first), until_probe_(gathering_ ? kNever : 1) {}
+
+  // Once per ray: true where the scheduler must be asked (decide()). While it gathers, this count
+  // is all a ray pays over `filter`; while it runs depth first, it is due on every ray.
+  [[gnu::always_inline]] bool due() { return --until_probe_ == 0; }
+
+  // On a due ray: true to run it depth first (a probe, or every ray while depth first); false to
+  // gather after all (a probe is due, but too few gathered rays since the last one could cull:
+  // the next interval is twice as long, as after a probe that found little to cull).
+  bool decide() {
+    if (!gathering_) {
+      until_probe_ = 1;  // the next ray comes here too, unless the pass's result starts gathering
+      return true;
+    }
+    const bool probe = could_cull();
+    cull_rays_ = 0;
+    if (!probe) probe_every_ = std::min(2 * probe_every_, kQueueKnobs.probe_most);
+    until_probe_ = probe_every_;
+    return probe;
+  }
+
+  // A gathered ray that held max_hits hits (1 without a hint) or more: its bound could have closed.
+  void cullable_ray() { ++cull_rays_; }
+
+  // After a depth-first first pass that deferred `deferred` subtrees over `steps` nodes traversed.
+  void depth_first_done(std::size_t deferred, std::uint64_t steps) {
+    cull_rays_ = 0;
+    const float per_step = float(deferred) / float(steps > 0 ? steps : 1);
+    deferred_per_step_ += (per_step - deferred_per_step_) * kQueueKnobs.average_weight;
+    // While probes say "gather" by a wide margin, probe half as often; one that does not brings
+    // the interval back to probe_least.
+    const float clear_below = kQueueKnobs.breadth_first_below / 4;
+    const bool clear = per_step < clear_below && deferred_per_step_ < clear_below;
+    probe_every_ = clear ? std::min(2 * probe_every_, kQueueKnobs.probe_most) : kQueueKnobs.probe_least;
+    if (mode_ == QueueFirstPass::adaptive) {
+      gathering_ = deferred_per_step_ < kQueueKnobs.breadth_first_below;
+      until_probe_ = gathering_ ? probe_every_ : 1;
+    }
+  }
+
+  // Whether the next ray's first pass gathers.
+  bool gathers_next() const { return gathering_ && !(until_probe_ == 1 && could_cull()); }
+
+ private:
+  static constexpr std::uint64_t kNever = std::uint64_t(-1);  // no probes (breadth_first mode)
+  bool could_cull() const { return cull_rays_ * kQueueKnobs.probe_share >= probe_every_; }
+
+  QueueFirstPass mode_;
+  bool gathering_;
+  // Rays until the next decide(), this one included (1 while first passes run depth first).
+  std::uint64_t until_probe_;
+  std::uint64_t probe_every_ = kQueueKnobs.probe_least;
+  std::uint64_t cull_rays_ = 0;      // gathered rays since the last decision that could cull
+  float deferred_per_step_ = 1.0f;   // adaptive: starts near to far
+};
+
 // C: the counter policy (counters.h).
 template <typename T, class C = NoCounters>
 class QueueKernel : public WideKernel<T, C> {
@@ -44,9 +127,7 @@ class QueueKernel : public WideKernel<T, C> {
  public:
   explicit QueueKernel(const WideBvh<T>& bvh, HitOrder order = {},
                        QueueFirstPass first_pass = QueueFirstPass::adaptive)
-      : Base(bvh, order), first_pass_(first_pass) {
-    gathering_ = first_pass == QueueFirstPass::breadth_first;
-    until_probe_ = gathering_ ? kNever : 1;
+      : Base(bvh, order), schedule_(first_pass) {
     hits_.reserve(16);
     deferred_.reserve(4 * bvh.stack_capacity());
   }
@@ -64,39 +145,21 @@ class QueueKernel : public WideKernel<T, C> {
   // begin(). A gathering first pass appends every hit to `out` and returns true (for
   // HitIterator::collect: no copy through next()): the first max_hits of them in order (all
   // without a hint), the rest after them in no order, since the caller asked for max_hits. A
-  // depth-first pass holds its hits for next() and returns false.
-  // Inlined into HitIterator::collect() as `filter`'s is (GCC left it out of line, a call per ray
-  // that `filter` does not make).
-  // A gathering pass touches nothing next() reads: its hits are all in `out`, and after
-  // HitIterator::collect no next() follows (begin() resets next()'s state itself).
+  // depth-first pass holds its hits for next() and returns false. A gathering pass touches nothing
+  // next() reads (begin() resets next()'s state itself). Always inlined, as `filter`'s pass is
+  // into HitIterator::collect(), so that a gathered ray costs what a `filter` ray does.
   [[gnu::always_inline]] bool begin_into(const Ray& ray, std::size_t max_hits, std::vector<Hit>& out) {
     this->prepare(ray);
-    // While it gathers, this count and gather()'s size test are all a ray pays over `filter`:
-    // whether to probe is decided once per probe interval (descends()), not per ray. It is 1 on
-    // every ray that does not gather.
-    if (--until_probe_ == 0) [[unlikely]] {
+    if (schedule_.due()) [[unlikely]] {
       if (descends(max_hits)) return false;
     }
-    // `filter`'s pass: every hit in range, nothing deferred. It runs where culling saves little,
-    // and breadth first the bound would close late anyway.
     gather(max_hits, out);
     return true;
   }
 
-  // Whether the next begin() runs its first pass breadth first: as the constructor fixed it, or
-  // (adaptive) while recent depth-first passes deferred fewer than kBreadthFirstBelow subtrees per
-  // node traversed, but for every probe_every_-th ray, which runs depth first to keep that average
-  // current. The probes cost: where no ray closes its bound (CGAL's meshes, the shell at N = 5 and
-  // 15), probing every 32nd ray kept `queue` measurably behind `filter` (docs/BENCHMARKS-HISTORY.md,
-  // eighteenth session), so while the probes find nothing to cull they come less often. And a probe
-  // runs only where at least one in kProbeShare of the rays gathered since the last one held as
-  // many hits as the bound's depth. A ray with fewer closes no bound: depth first it defers nothing
-  // and only loses the latency that the breadth-first pass hides, so where no ray holds that many
-  // (blob at N = 5 and 15, CGAL's meshes at N = 15) a probe could only cost, and where more than
-  // seven rays lose for each that could cull (CGAL's meshes at N = 5), culling can hardly win it
-  // back. (Until the twenty-sixth session one such ray in an interval was enough for a probe.)
-  bool breadth_first() const { return gathering_ && !(until_probe_ == 1 && could_cull()); }
-  static constexpr std::uint64_t kProbeShare = 8;  // a probe needs one ray in 8 that could cull (above)
+  // Whether the next begin() runs its first pass breadth first.
+  bool breadth_first() const { return schedule_.gathers_next(); }
+  static constexpr std::uint64_t kProbeShare = kQueueKnobs.probe_share;
 
   bool next(Hit& out) {
     // Nothing deferred (always after a gathering pass): every hit left is held, in order, and no
@@ -125,28 +188,11 @@ class QueueKernel : public WideKernel<T, C> {
   }
 
  private:
-  // begin_into() at the end of a probe interval, and on every ray while first passes run depth
-  // first: runs a depth-first first pass and returns true, or returns false where the ray gathers
-  // after all (a probe is due, but too few gathered rays since the last one could cull). Out of
-  // line and without a gathering pass of its own: begin_into() has the one copy of it, as `filter`
-  // has. (Until the twenty-seventh session this function gathered itself where it skipped a probe:
-  // a second copy of the pass, run by one ray in 32 where no probe ever runs, blob at N = 5 and 15.)
+  // A ray on which the schedule is due: runs a depth-first first pass and returns true, or
+  // returns false where the ray gathers after all. Out of line, so that begin_into() holds the one
+  // copy of the gathering pass, laid out as `filter`'s.
   [[gnu::noinline]] bool descends(std::size_t max_hits) {
-    if (gathering_) {
-      // A probe is due on this ray: run it, or put it one interval on.
-      const bool probe = could_cull();
-      cull_rays_ = 0;
-      if (!probe) {
-        // Too few rays could have culled: the next interval is twice as long, as after a probe
-        // that found little to cull (descend_first()).
-        probe_every_ = std::min(2 * probe_every_, kProbeMost);
-        until_probe_ = probe_every_;
-        return false;
-      }
-      until_probe_ = probe_every_;
-    } else {
-      until_probe_ = 1;  // the next ray comes here too, unless descend_first() starts gathering
-    }
+    if (!schedule_.decide()) return false;
     descend_first(max_hits);
     return true;
   }
@@ -154,7 +200,7 @@ class QueueKernel : public WideKernel<T, C> {
   // A gathering first pass into `out`. Unlike `filter`, it sorts only the max_hits hits the caller
   // wants: a ray with many more (hairball) is not sorted in full. A ray that holds max_hits hits
   // (1 without a hint) or more could have closed the bound, so culling could have paid on it
-  // (cull_rays_); a ray that holds fewer pays only the size test for it.
+  // (QueueScheduler::cullable_ray); a ray that holds fewer pays only the size test for it.
   [[gnu::always_inline]] void gather(std::size_t max_hits, std::vector<Hit>& out) {
     const std::size_t first = out.size();
     this->gather_in_range(out);
@@ -169,7 +215,7 @@ class QueueKernel : public WideKernel<T, C> {
   // that hold fewer is laid out as `filter`'s.
   [[gnu::noinline]] void sort_first(std::vector<Hit>::iterator first, std::vector<Hit>::iterator last,
                                     std::size_t max_hits) {
-    ++cull_rays_;
+    schedule_.cullable_ray();
     sort_first_hits(first, last, max_hits, this->order_);
   }
 
@@ -184,22 +230,11 @@ class QueueKernel : public WideKernel<T, C> {
     // The first pass, from the root (what the first next() would do, without the heap).
     this->seed_root(this->ray_.tmin, this->ray_.tmax);
     steps_ = 0;
-    cull_rays_ = 0;
     Descend p{*this};
     this->run(p);
     // What culling saved on this ray: subtrees deferred per node traversed (none where the bound
-    // never closed). Measured on depth-first passes only, since a gathering pass defers nothing.
-    // 1/32: the average follows the last few dozen of them.
-    const float deferred = float(deferred_.size()) / float(steps_ > 0 ? steps_ : 1);
-    deferred_per_step_ += (deferred - deferred_per_step_) * (1.0f / 32.0f);
-    // While the probes say "breadth first" by a wide margin, probe half as often (down to every
-    // kProbeMost-th ray); one that does not brings the interval back to kProbeLeast.
-    const bool clear = deferred < kBreadthFirstBelow / 4 && deferred_per_step_ < kBreadthFirstBelow / 4;
-    probe_every_ = clear ? std::min(2 * probe_every_, kProbeMost) : kProbeLeast;
-    if (first_pass_ == QueueFirstPass::adaptive) {
-      gathering_ = deferred_per_step_ < kBreadthFirstBelow;
-      until_probe_ = gathering_ ? probe_every_ : 1;
-    }
+    // never closed). Measured on depth-first passes only: a gathering pass defers nothing.
+    schedule_.depth_first_done(deferred_.size(), steps_);
   }
 
   // Every hit is held in order; a node entered beyond the depth_-th held hit not yet returned is
@@ -239,29 +274,8 @@ class QueueKernel : public WideKernel<T, C> {
   std::size_t depth_ = 1;  // the bound is the depth_-th held hit not yet returned
   T bound_ = 0;            // its t (tmax while fewer are held)
   NodeHeap<T> deferred_;   // nodes entered beyond the bound, nearest first
-  QueueFirstPass first_pass_;
-  // Between the bench scenes' figures, read from a temporary instrumented build (no bench prints
-  // them; sixteenth session, docs/BENCHMARKS-HISTORY.md): hairball at N = 15 defers 0.03 per node traversed
-  // and ran faster breadth first in pierce_bench_kernels, at N = 5 0.17 and ran faster near to
-  // far; blob and shell at N = 5 and 15 hold fewer hits than N and defer none.
-  static constexpr float kBreadthFirstBelow = 0.08f;
-  float deferred_per_step_ = 1.0f;  // adaptive: starts near to far
-  std::uint64_t steps_ = 0;         // nodes traversed in this ray's passes
-  // Adaptive: a breadth-first kernel's first pass still runs depth first on every probe_every_-th ray
-  // (a power of two), to measure what culling would save.
-  static constexpr std::uint64_t kProbeLeast = 32, kProbeMost = 256;
-  std::uint64_t probe_every_ = kProbeLeast;
-  // Whether first passes gather (breadth_first: always; adaptive: while culling saves little),
-  // and, while they do, the rays until an adaptive kernel's next probe, this one included (kNever:
-  // no probes; 1 while first passes run depth first).
-  static constexpr std::uint64_t kNever = std::uint64_t(-1);
-  bool gathering_ = false;
-  std::uint64_t until_probe_ = 1;
-  // Gathering passes since the last probe (or the decision not to run one) that held max_hits hits
-  // (1 without a hint) or more: the only rays whose bound could close, so culling could pay.
-  std::uint64_t cull_rays_ = 0;
-  // Whether the probe due now could find culling worth a depth-first first pass (kProbeShare).
-  bool could_cull() const { return cull_rays_ * kProbeShare >= probe_every_; }
+  std::uint64_t steps_ = 0;  // nodes traversed in this ray's passes
+  QueueScheduler schedule_;
 };
 
 }  // namespace pierce

@@ -34,7 +34,7 @@ struct FalseColourOptions {
   double range_min = std::numeric_limits<double>::quiet_NaN();
   double range_max = std::numeric_limits<double>::quiet_NaN();
   bool legend = true;  // colour bar with min / max labels on the right (if the picture is wide enough)
-  KernelKind kernel = KernelKind::queue;
+  KernelKind kernel = kDefaultKernel;
 };
 
 // The picture's frame: an orthographic camera fitted to the scene's bounds seen along
