@@ -8,7 +8,7 @@ depth, penetration) and contact pairs.
 The demo's .vtm/.vtp files are read here with the standard library (xml.etree + base64), not with
 VTK's XML reader: Debian 12's VTK 9.2 reader feeds expat incrementally and stops it at an
 <AppendedData> section, which Debian's expat 2.5.0-1+deb12u2 and later (reparse deferral, the
-CVE-2023-52425 fix) no longer honours, so files with raw appended data (ParaView's default) fail to read back with
+CVE-2023-52425 fix) do not honour, so files with raw appended data (ParaView's default) fail to read back with
 "not well-formed (invalid token)" depending on where the data bytes fall. The demo writes inline
 base64 (DataMode=Binary); this check asserts that (no <AppendedData>), so a regression is reported
 as such instead of as an intermittent reader error, and it then parses the whole document in one go.

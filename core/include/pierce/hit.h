@@ -83,8 +83,8 @@ template <class It>
 
 // Sorts the hits [first, last) in `order`. A ray holds few hits as a rule: up to 16 are sorted by
 // insertion inline (what std::sort does with so few, without its calls), more by std::sort. Inline
-// wherever hits are gathered, so that `filter` and `queue`'s gathering pass sort alike (GCC had
-// left std::sort's insertion step inline in one and out of line in the other).
+// wherever hits are gathered, so that `filter` and `queue`'s gathering pass sort alike (left to
+// GCC, std::sort's insertion step can be inline in one and out of line in the other).
 template <class It>
 [[gnu::always_inline]] inline void sort_hits(It first, It last, const HitOrder& order) {
   if (last - first > 16) {
