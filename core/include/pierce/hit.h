@@ -34,15 +34,7 @@ struct HitKey {
 inline HitKey key_of(const Hit& h) { return {h.t, h.geom, h.prim, h.enter}; }
 // The full record of a ranked candidate (the inverse of key_of).
 inline Hit hit_of(const HitKey& k, float u, float v, const Vec3f& ng) {
-  Hit h;
-  h.t = k.t;
-  h.geom = k.geom;
-  h.prim = k.prim;
-  h.enter = k.enter;
-  h.u = u;
-  h.v = v;
-  h.ng = ng;
-  return h;
+  return {.t = k.t, .geom = k.geom, .prim = k.prim, .u = u, .v = v, .ng = ng, .enter = k.enter};
 }
 
 // How hits at equal t are ranked. `geom_prim` is Wald et al.'s (t, geom, prim).
