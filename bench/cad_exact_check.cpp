@@ -1,4 +1,4 @@
-// pierce_check_cad_exact: is `pierce thickness` on CAD files true to the B-rep (issue 16)? For
+// pierce_check_cad_exact: is `pierce thickness` on CAD files true to the B-rep? For
 // each STEP/IGES/BREP file given, every valid sample of `pierce thickness --per face` and
 // `--per vertex` (default options, exact B-rep) is checked against OpenCASCADE: from the sample's
 // B-rep point along its inward normal, the first crossing of the solid's faces
@@ -10,12 +10,11 @@
 // ray between the two answers runs in a face (on the boundary within 1e-7 of the size), the
 // thickness is ill-posed and the sample is counted apart. Where the Boolean fails, the point
 // classifier settles it (in the solid up to Pierce's exit, out beyond). Also counted: unflagged
-// no-exits. Only B-rep solids
-// whose mesh is closed are checked (a shell has no inside).
+// no-exits. Only B-rep solids whose mesh is closed are checked (a shell has no inside).
 // Prints one row per file and per sampling, and the samples that disagree with both answers;
 // exit status 1 when a sample reads less than half its exact wall or a closed solid has an
-// unflagged no-exit (the issue's "false thin spot"). Not a timed bench: a checker for real parts
-// that are not in the repository (the issue's "checked outside the repository").
+// unflagged no-exit (a false thin spot). Not a timed bench: a checker for real parts that are not
+// in the repository.
 #include <BRepAlgoAPI_Common.hxx>
 #include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>

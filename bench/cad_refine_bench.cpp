@@ -1,4 +1,4 @@
-// pierce_bench_cad_refine: what thickness true to the B-rep costs (issue 16). On CAD solids built
+// pierce_bench_cad_refine: what thickness true to the B-rep costs. On CAD solids built
 // with OpenCASCADE (the tests' model builder: the bent sheet, the filleted box, the hollow torus,
 // the thin blended plate, the loft), `pierce thickness --per face` as the CLI runs it, once on the
 // mesh only (no exact surfaces) and once on the B-rep (samples projected onto their faces, exits refined by

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Puts CGAL's sample meshes (bunny00.off, armadillo.off, elephant.off: the "CGAL-style meshes a
-# user would bring" of issue 12) into DIR, from Debian's libcgal-demo package (its data.tar.gz),
+# Puts CGAL's sample meshes (bunny00.off, armadillo.off, elephant.off: meshes such as a CGAL user
+# would bring) into DIR, from Debian's libcgal-demo package (its data.tar.gz),
 # without installing the package. Then:
 #   pierce_bench_kernels --scene none --mesh DIR/bunny00.off --mesh DIR/armadillo.off --mesh DIR/elephant.off
 # Usage: bench/fetch_cgal_meshes.sh DIR   (DIR is created; meshes already there are kept)

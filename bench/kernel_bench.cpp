@@ -179,8 +179,8 @@ void time_rows(std::vector<Row>& rows, std::size_t ray_count, int reps) {
       for (std::size_t c = 0; c < row.cells.size(); ++c, ++k) {
         Cell& cell = row.cells[c];
         // Every cell starts with its own data in the caches: the rows use different structures
-        // (Embree's scenes, Pierce's BVH), and without this the first row of each repetition ran
-        // on data the previous row had evicted.
+        // (Embree's scenes, Pierce's BVH), and without this the first row of each repetition would
+        // run on data the previous row evicted.
         const Counters warm_from = row.jobs[c].counters();
         row.jobs[c].pass(cell, 0, std::max<std::size_t>(1, ray_count / 16));
         untimed[k] += row.jobs[c].counters() - warm_from;
@@ -211,34 +211,30 @@ std::size_t chunk_rays(std::size_t ray_count) {
   return std::max<std::size_t>(8192 * threads, (ray_count + 31) / 32);
 }
 
-// The ratios the docs quote compare cells that time_rows() times tens of milliseconds apart: on
-// this machine the same two cells' ratio ranged over 30 % by repetition, and `epsilon` over plain
-// Embree's first hit 0.64-1.39. So the cells behind them are timed again, group by group, chunk by
-// chunk: each chunk of rays through every cell of the group, in a new order per chunk (a fixed
-// order would have each cell always follow the same one, and start on what that one left in the
-// branch predictors and caches). A change of the machine's speed then falls on all of them alike
-// within milliseconds. The groups (chunked_groups()):
+// The ratios the docs quote need finer timing than time_rows() gives: it times the two cells of a
+// ratio tens of milliseconds apart, and on a shared machine their ratio moves by tens of per cent
+// from repetition to repetition (the "by repetition" ranges of `pierce_bench_kernels --reps 20`
+// show it). So the cells behind those ratios are timed again, group by group, chunk by chunk: each
+// chunk of rays through every cell of the group, in a new order per chunk (a fixed order would have
+// each cell always follow the same one, and start on what that one left in the branch predictors
+// and caches). A change of the machine's speed then falls on all of them alike within
+// milliseconds. The groups (chunked_groups()):
 //  - `restart`, `queue` and `filter` at N = 5 and 15 (queue / min(restart, filter)). Where no ray
 //    holds N hits the three do the same work, so the ratio is 1 give or take the timing's noise.
 //  - Pairs: at N = 1 every exact own-BVH kernel and `epsilon`, each with plain Embree's first hit;
 //    for all hits every exact own-BVH kernel with plain Embree's all-hits filter.
 // Pairs, not one group per column: cells that read different structures (Embree's scenes,
-// Pierce's BVH) evict each other's data, and in one group of five cells on Pierce's BVH and one on
-// Embree's scene, the Embree cell started nearly every chunk on evicted data: in the one run so
-// (twenty-seventh session) the best kernel's ratios to it read 13-26 % lower than as pairs in the
-// next run. In a pair, either cell's chunk follows the other's. And every timed chunk follows an untimed
-// pass of the same cell over the chunk's first sixteenth, as each of time_rows()' passes follows
-// one over the first sixteenth of the rays.
-// In the twenty-sixth session's runs, cells of the same work (`filter` at N = 5 and at N = 15 on
-// blob, where no ray holds 5 hits) lay up to 9 % apart in one repetition and up to 3 % in the
-// medians of five. So this timing runs kPairedRepsPerRep times the table's repetitions. That
-// narrows what varies from repetition to repetition, not an offset that holds for a whole run:
-// with 20 repetitions, the medians of `filter` at N = 5 and 15 still lay up to 4 % apart in some
-// runs on bunny and armadillo, where the two do nearly the same work, and 9 % once. The offset
-// came with where a cell's iterators sat in memory, so every repetition now runs on iterators at
-// new addresses (CellJob::relocate): in five runs of blob and CGAL's meshes after that, those
-// medians lay 0.985-1.014 apart. (Until the twenty-seventh session only the first group was
-// timed this way, without the untimed pass per chunk.)
+// Pierce's BVH) evict each other's data, and in a group of several cells on Pierce's BVH and one on
+// Embree's scene, the Embree cell would start nearly every chunk on evicted data and every
+// kernel's ratio to it would read low. In a pair, either cell's chunk follows the other's. And
+// every timed chunk follows an untimed pass of the same cell over the chunk's first sixteenth, as
+// each of time_rows()' passes follows one over the first sixteenth of the rays.
+// Each group runs kPairedRepsPerRep times the table's repetitions, every repetition on iterators
+// at new addresses (CellJob::relocate): more repetitions narrow what varies between repetitions,
+// the new addresses an offset that comes with where a cell's memory sits and would otherwise hold
+// for a whole run. The "same-work control filter N = 15 / N = 5" that `pierce_bench_kernels
+// --scene blob` prints checks both: the two cells do the same work there, so it reads 1 within
+// the resolution of the quoted ratios (0.985-1.014 on blob and on CGAL's meshes via --mesh).
 constexpr int kPairedRepsPerRep = 4;
 int paired_reps(const Settings& st) { return kPairedRepsPerRep * st.reps; }
 
@@ -303,8 +299,8 @@ std::vector<double> time_group_by_chunk(const std::vector<ChunkedCell>& cells, s
     return c.row->jobs[c.column].pass(c.cell(), begin, end);
   };
   // Every repetition on iterators at new addresses: where a cell's memory lands can make it a few
-  // per cent slower for as long as it stays there (a whole run, before this), so the median is
-  // taken over as many layouts as repetitions.
+  // per cent slower for as long as it stays there, so the median is taken over as many layouts as
+  // repetitions.
   for (const ChunkedCell& c : cells) c.row->jobs[c.column].relocate();
   for (std::size_t begin = 0; begin < ray_count; begin += chunk) {
     const std::size_t end = std::min(ray_count, begin + chunk);
@@ -339,17 +335,16 @@ void time_by_chunk(std::vector<Row>& rows, std::size_t ray_count, const Settings
   }
 }
 
-// "2 threads >= 1.8x 1 thread" compared runs at --threads 1 and 2, taken minutes apart: in the
-// twenty-seventh session the same 2-thread run read 1.50-1.94 or 1.75-2.08 for the best kernel
-// depending on which 1-thread run it was set against, and plain Embree's rows moved as far. So a
-// run with more than one thread also times each cell of interest on one thread (a task_arena of
-// one) and on all, as a pair chunk by chunk, like the pairs above: the own-BVH kernels and plain
-// Embree's first hit at N = 1, and the own-BVH kernels and plain Embree's all-hits filter at "all".
-// The pairs take turns repetition by repetition, in a new order each time. Until the
-// twenty-eighth session each pair ran its repetitions back to back; the second thread here gives
-// more in some stretches of a run than in others, so a cell read 1.42 in one run and 2.01 in the
-// next, and whichever cell ran in a slow stretch trailed the others. Taking turns spreads such a
-// stretch over every cell, Pierce's and plain Embree's alike.
+// Speed-up on all threads over one, from one run: runs at --threads 1 and 2 taken minutes apart
+// differ by more than the speed-up's resolution (set against two 1-thread runs, the same 2-thread
+// run reads speed-ups up to a quarter apart), and plain Embree's rows move as far. So a run with more than
+// one thread also times each cell of interest on one thread (a task_arena of one) and on all, as a
+// pair chunk by chunk, like the pairs above: the own-BVH kernels and plain Embree's first hit at
+// N = 1, and the own-BVH kernels and plain Embree's all-hits filter at "all". The pairs take turns
+// repetition by repetition, in a new order each time, not each pair's repetitions back to back:
+// the second thread gives more in some stretches of a run than in others, and taking turns
+// spreads such a stretch over every cell, Pierce's and plain Embree's alike. The "by repetition"
+// ranges of `pierce_bench_kernels --threads 2` show how far the stretches reach.
 void time_scaling_by_chunk(std::vector<Row>& rows, std::size_t ray_count, const Settings& st) {
   if (tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) < 2) return;
   std::vector<std::vector<ChunkedCell>> pairs;  // {on one thread, on all}

@@ -1,4 +1,4 @@
-// Pierce vs VTK's locators (issue 8): all hits along the same segments with vtkOBBTree,
+// Pierce vs VTK's locators: all hits along the same segments with vtkOBBTree,
 // vtkStaticCellLocator and vtkCellLocator (IntersectWithLine, multi-hit overloads, as a ParaView
 // user would call them) and with Pierce's and Embree's kernels through pierce. The expected
 // hits are those of Pierce's filter kernel (checked against the exact oracle in tests/oracle).

@@ -12,6 +12,7 @@
 #include "csv_text.h"
 #include "command.h"
 #include "interrupt.h"
+#include "json_text.h"
 #include "model_args.h"
 #include "output_file.h"
 #include "pierce/analysis/csg.h"
@@ -140,9 +141,7 @@ void write_json(std::FILE* f, const std::vector<Vec3d>& pts, const std::vector<T
       c.push_back(point_class_name(classes[p * targets.size() + t]));
     jp.push_back({{"point", p}, {"at", {pts[p].x, pts[p].y, pts[p].z}}, {"classes", std::move(c)}});
   }
-  const std::string text = j.dump(1);
-  std::fwrite(text.data(), 1, text.size(), f);
-  std::fputc('\n', f);
+  write_json_document(f, j);
 }
 
 std::string output_format(const ClassifyCli& o) {
@@ -205,9 +204,8 @@ int run_classify(const ClassifyCli& o) {
 }  // namespace
 
 std::function<int()> register_classify(CLI::App& app) {
-  const auto [o, cmd] = add_command<ClassifyCli>(app,
+  const auto [o, cmd] = add_model_command<ClassifyCli>(app,
       "classify", "Inside / outside / on of points for every solid or CSG expression (ray partitions)");
-  add_model_args(cmd, o->model, true);
   // One value per occurrence, so `--point 1,2,3 MODEL` does not read MODEL as a point.
   cmd->add_option("--point", o->points, "A point X,Y,Z (repeatable)")->allow_extra_args(false);
   cmd->add_option("--points", o->points_file, "CSV file of points, one x,y,z per line (optional header x,y,z)");

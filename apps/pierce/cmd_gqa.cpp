@@ -11,6 +11,7 @@
 
 #include "command.h"
 #include "interrupt.h"
+#include "json_text.h"
 #include "model_args.h"
 #include "output_file.h"
 #include "pierce/analysis/gqa.h"
@@ -35,10 +36,8 @@ struct GqaCli {
   bool force = false, progress = false;
 };
 
-nlohmann::ordered_json vec(Vec3d p) {
-  if (!std::isfinite(p.x)) return nullptr;
-  return {p.x, p.y, p.z};
-}
+// A point, or null where there is none (the centroid of nothing).
+nlohmann::ordered_json vec(Vec3d p) { return std::isfinite(p.x) ? json_point(p) : nlohmann::ordered_json(); }
 
 nlohmann::ordered_json pair_json(const Scene& s, const GqaPair& p, bool overlap) {
   nlohmann::ordered_json j = {{"a", solid_label(s, p.a)},
@@ -62,7 +61,7 @@ nlohmann::ordered_json quantities_json(const GqaQuantities& q) {
           {"centroid", vec(q.centroid)},
           {"axis_volume", q.axis_volume},
           {"crossings", q.crossings},
-          {"change", std::isfinite(q.change) ? nlohmann::ordered_json(q.change) : nlohmann::ordered_json()},
+          {"change", json_or_null(q.change)},
           {"std_error", q.std_error}};
 }
 
@@ -77,8 +76,7 @@ void write_json(std::FILE* f, const Scene& s, const GqaResult& r) {
     passes.push_back({{"n", p.n},
                       {"rays", p.rays},
                       {"seconds", p.seconds},
-                      {"worst_change", std::isfinite(p.worst_change) ? nlohmann::ordered_json(p.worst_change)
-                                                                     : nlohmann::ordered_json()},
+                      {"worst_change", json_or_null(p.worst_change)},
                       {"worst", p.worst}});
   auto& solids = j["solids"] = nlohmann::ordered_json::array();
   for (std::uint32_t g = 0; g < r.solids.size(); ++g) {
@@ -103,9 +101,7 @@ void write_json(std::FILE* f, const Scene& s, const GqaResult& r) {
   for (const GqaPair& p : r.gaps) gaps.push_back(pair_json(s, p, false));
   j["unmatched_leaves"] = r.unmatched_leaves;
   j["unclosed"] = r.unclosed;
-  const std::string text = j.dump(1);
-  std::fwrite(text.data(), 1, text.size(), f);
-  std::fputc('\n', f);
+  write_json_document(f, j);
 }
 
 void print_quantities(const char* kind, const std::string& name, const GqaQuantities& q) {
@@ -179,10 +175,9 @@ int run_gqa_cmd(const GqaCli& o) {
 }  // namespace
 
 std::function<int()> register_gqa(CLI::App& app) {
-  const auto [o, cmd] = add_command<GqaCli>(app,
+  const auto [o, cmd] = add_model_command<GqaCli>(app,
       "gqa", "Volume, centroid and surface crossings per solid from refined ray grids; overlaps and gaps (like "
              "BRL-CAD gqa)");
-  add_model_args(cmd, o->model, true);
   cmd->add_option("--tol", o->tol,
                   "Relative tolerance: refine until volumes change by at most this between passes, the three axes "
                   "agree, 3 estimated standard errors fit in it and centroids move by at most tol x scene diagonal")

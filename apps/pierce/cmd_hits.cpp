@@ -311,10 +311,9 @@ int run_hits(const HitsOptions& o) {
 }  // namespace
 
 std::function<int()> register_hits(CLI::App& app) {
-  const auto [opts, cmd] = add_command<HitsOptions>(
-      app, "hits", "Every surface each ray crosses, in order (CSV: ray,t,geom,prim,u,v,enter)");
   // Geometry ids follow argument order: one per OBJ o/g group, one per CAD solid.
-  add_model_args(cmd, opts->model, true);
+  const auto [opts, cmd] = add_model_command<HitsOptions>(
+      app, "hits", "Every surface each ray crosses, in order (CSV: ray,t,geom,prim,u,v,enter)");
   cmd->add_option("--rays", opts->rays,
                   "CSV file ox,oy,oz,dx,dy,dz[,tmin,tmax], or grid:axis=x|y|z,n=N[,dir=-], or random:n=N[,seed=S] "
                   "(required unless --heatmap)");

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command.h"
+#include "json_text.h"
 #include "model_args.h"
 #include "pierce/analysis/mesh_report.h"
 
@@ -58,8 +59,8 @@ int run_info(const InfoOptions& o) {
                              {"inconsistent_edges", r.inconsistent_edges},
                              {"degenerate_triangles", r.degenerate},
                              {"duplicate_triangles", r.duplicates},
-                             {"bounds_min", {r.bounds.lo.x, r.bounds.lo.y, r.bounds.lo.z}},
-                             {"bounds_max", {r.bounds.hi.x, r.bounds.hi.y, r.bounds.hi.z}},
+                             {"bounds_min", json_point(r.bounds.lo)},
+                             {"bounds_max", json_point(r.bounds.hi)},
                              {"area", r.area},
                              {"volume", r.volume}});
       if (const TessellationCheck* c = check_of(r.geom))
@@ -107,10 +108,9 @@ int run_info(const InfoOptions& o) {
 }  // namespace
 
 std::function<int()> register_info(CLI::App& app) {
-  const auto [opts, cmd] = add_command<InfoOptions>(
+  const auto [opts, cmd] = add_model_command<InfoOptions>(
       app, "info",
       "Per solid: triangles, closed or open, non-manifold edges, degenerate triangles, bounding box, units");
-  add_model_args(cmd, opts->model, true);
   cmd->add_flag("--json", opts->json, "Print the report as JSON");
   return [opts] { return run_info(*opts); };
 }

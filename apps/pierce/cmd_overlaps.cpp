@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "csv_text.h"
+#include "json_text.h"
 #include "picture.h"
 #include "command.h"
 #include "interrupt.h"
@@ -51,9 +52,6 @@ std::vector<Ray> make_rays(const std::string& spec, const Scene& scene) {
     throw InputError("--rays '" + spec + "': expected axes:n=N with 0 < N <= 32768");
   return axis_grid_rays(scene.bounds(), int(n));
 }
-
-nlohmann::ordered_json vec(Vec3d p) { return {p.x, p.y, p.z}; }
-nlohmann::ordered_json maybe(double v) { return std::isnan(v) ? nlohmann::ordered_json() : nlohmann::ordered_json(v); }
 
 void write_csv(std::FILE* f, const Scene& s, const CoplanarReport& c, const RayOverlapReport& r) {
   std::fputs("kind,solid_a,name_a,solid_b,name_b,count,exact,same_facing,opposite_facing,area,max_depth,penetration,x,y,z\n", f);
@@ -95,13 +93,15 @@ void write_json(std::FILE* f, const Scene& s, const OverlapsCli& o, const Coplan
                      {"solid_b", p.b},
                      {"count", p.count},
                      {"max_depth", p.max_depth},
-                     {"max_depth_entry", vec(p.max_depth_entry)},
+                     {"max_depth_entry", json_point(p.max_depth_entry)},
                      {"max_depth_ray", p.max_depth_ray},
-                     {"axis_max_depth", {maybe(p.axis_max_depth[0]), maybe(p.axis_max_depth[1]), maybe(p.axis_max_depth[2])}},
-                     {"penetration", maybe(p.penetration)}});
+                     {"axis_max_depth",
+                      {json_or_null(p.axis_max_depth[0]), json_or_null(p.axis_max_depth[1]),
+                       json_or_null(p.axis_max_depth[2])}},
+                     {"penetration", json_or_null(p.penetration)}});
   auto& cont = j["contacts"] = nlohmann::ordered_json::array();
   for (const ContactPair& p : r.contacts)
-    cont.push_back({{"solid_a", p.a}, {"solid_b", p.b}, {"rays", p.count}, {"where", vec(p.where)}});
+    cont.push_back({{"solid_a", p.a}, {"solid_b", p.b}, {"rays", p.count}, {"where", json_point(p.where)}});
   j["coplanar_tolerance"] = c.tolerance;
   auto& cop = j["coplanar"] = nlohmann::ordered_json::array();
   for (const CoplanarSolidPair& p : c.solid_pairs)
@@ -112,18 +112,17 @@ void write_json(std::FILE* f, const Scene& s, const OverlapsCli& o, const Coplan
                    {"same_facing", p.same_facing},
                    {"opposite_facing", p.opposite_facing},
                    {"area", p.area},
-                   {"where", vec(p.where)}});
+                   {"where", json_point(p.where)}});
   auto& pairs = j["coplanar_triangle_pairs"] = nlohmann::ordered_json::array();
   for (const CoplanarPair& p : c.pairs)
     pairs.push_back({{"solid_a", p.geom_a}, {"triangle_a", p.prim_a}, {"solid_b", p.geom_b}, {"triangle_b", p.prim_b},
-                     {"area", p.area}, {"exact", p.exact}, {"same_facing", p.same_facing}, {"centroid", vec(p.centroid)}});
+                     {"area", p.area}, {"exact", p.exact}, {"same_facing", p.same_facing},
+                     {"centroid", json_point(p.centroid)}});
   auto& iv = j["interference_intervals"] = nlohmann::ordered_json::array();
   for (const Interference& x : r.intervals)
-    iv.push_back({{"ray", x.ray}, {"solid_a", x.a}, {"solid_b", x.b}, {"depth", x.depth}, {"entry", vec(x.entry)},
-                  {"exit", vec(x.exit)}});
-  const std::string text = j.dump(1);
-  std::fwrite(text.data(), 1, text.size(), f);
-  std::fputc('\n', f);
+    iv.push_back({{"ray", x.ray}, {"solid_a", x.a}, {"solid_b", x.b}, {"depth", x.depth},
+                  {"entry", json_point(x.entry)}, {"exit", json_point(x.exit)}});
+  write_json_document(f, j);
 }
 
 void write_vtp_result(std::FILE* f, const Scene& s, const TriangleOverlapArrays& a) {
@@ -246,9 +245,8 @@ int run_overlaps(const OverlapsCli& o) {
 }  // namespace
 
 std::function<int()> register_overlaps(CLI::App& app) {
-  const auto [o, cmd] = add_command<OverlapsCli>(app,
+  const auto [o, cmd] = add_model_command<OverlapsCli>(app,
       "overlaps", "Coplanar overlapping faces, coplanar-hit statistic and solid-solid interference along rays");
-  add_model_args(cmd, o->model, true);
   cmd->add_option("--tol", o->tol,
                   "Also report faces within this distance of coplanar (model units); 0 = exactly coplanar only")
       ->capture_default_str();

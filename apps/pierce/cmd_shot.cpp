@@ -14,6 +14,7 @@
 #include "csv_text.h"
 #include "command.h"
 #include "interrupt.h"
+#include "json_text.h"
 #include "model_args.h"
 #include "output_file.h"
 #include "pierce/analysis/shotline.h"
@@ -126,16 +127,14 @@ void write_csv(std::FILE* f, const Scene& s, const ShotResult& r, const CsgExpr*
                  exact_number(x.normal_thickness).c_str(), exact_number(x.t_in).c_str(), exact_number(x.t_out).c_str());
 }
 
-nlohmann::ordered_json vec(Vec3d p) { return {p.x, p.y, p.z}; }
-nlohmann::ordered_json maybe(double v) { return std::isnan(v) ? nlohmann::ordered_json() : nlohmann::ordered_json(v); }
-
 void write_json(std::FILE* f, const Scene& s, const std::vector<Ray>& rays, const ShotResult& r, const CsgExpr* csg) {
   nlohmann::ordered_json j;
   if (csg) j["csg"] = csg->text;
   auto& jr = j["rays"] = nlohmann::ordered_json::array();
   std::size_t row = 0;
   for (std::uint32_t i = 0; i < rays.size(); ++i) {
-    nlohmann::ordered_json ray = {{"ray", i}, {"origin", vec(rays[i].org)}, {"direction", vec(rays[i].dir)}};
+    nlohmann::ordered_json ray = {
+        {"ray", i}, {"origin", json_point(rays[i].org)}, {"direction", json_point(rays[i].dir)}};
     auto& rows = ray["rows"] = nlohmann::ordered_json::array();
     for (; row < r.rows.size() && r.rows[row].ray == i; ++row) {
       const ShotRow& x = r.rows[row];
@@ -146,12 +145,12 @@ void write_json(std::FILE* f, const Scene& s, const std::vector<Ray>& rays, cons
       rows.push_back({{"kind", shot_kind_name(x.kind)},
                       {"solids", names},
                       {"solid_ids", x.solids},
-                      {"in", vec(x.in_point)},
-                      {"out", vec(x.out_point)},
+                      {"in", json_point(x.in_point)},
+                      {"out", json_point(x.out_point)},
                       {"los", x.los},
-                      {"obliquity_in", maybe(x.obliquity_in)},
-                      {"obliquity_out", maybe(x.obliquity_out)},
-                      {"normal_thickness", maybe(x.normal_thickness)},
+                      {"obliquity_in", json_or_null(x.obliquity_in)},
+                      {"obliquity_out", json_or_null(x.obliquity_out)},
+                      {"normal_thickness", json_or_null(x.normal_thickness)},
                       {"t_in", x.t_in},
                       {"t_out", x.t_out}});
     }
@@ -161,9 +160,7 @@ void write_json(std::FILE* f, const Scene& s, const std::vector<Ray>& rays, cons
                   {"rays_hitting", r.rays_hitting},
                   {"unmatched_leaves", r.unmatched_leaves},
                   {"unclosed", r.unclosed}};
-  const std::string text = j.dump(1);
-  std::fwrite(text.data(), 1, text.size(), f);
-  std::fputc('\n', f);
+  write_json_document(f, j);
 }
 
 int run_shot(const ShotCli& o) {
@@ -202,10 +199,9 @@ int run_shot(const ShotCli& o) {
 }  // namespace
 
 std::function<int()> register_shot(CLI::App& app) {
-  const auto [o, cmd] = add_command<ShotCli>(app,
+  const auto [o, cmd] = add_model_command<ShotCli>(app,
       "shot", "Shotlines (like BRL-CAD nirt): solids along rays with in/out points, line of sight, obliquity, "
               "normal thickness, gaps and overlaps");
-  add_model_args(cmd, o->model, true);
   cmd->add_option("--from", o->from, "Ray origin X,Y,Z (with --dir)");
   cmd->add_option("--dir", o->dir, "Ray direction DX,DY,DZ (with --from; need not be unit length)");
   cmd->add_option("--grid", o->grid, "Grid of parallel rays over the model: axis=x|y|z,n=N[,dir=+|-]");

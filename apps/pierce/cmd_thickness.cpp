@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "csv_text.h"
+#include "json_text.h"
 #include "picture.h"
 #include "command.h"
 #include "interrupt.h"
@@ -214,15 +215,13 @@ void write_json(std::FILE* f, const Scene& scene, const ThicknessResult& r, cons
   for (std::size_t i = 0; i < r.size(); ++i) {
     const Vec3d p = r.point[i];
     nlohmann::ordered_json e{{"id", i}, {"solid", r.solid[i]}, {"element", r.element[i]}, {"x", p.x}, {"y", p.y}, {"z", p.z}};
-    e["thickness"] = std::isnan(r.thickness[i]) ? nlohmann::ordered_json() : nlohmann::ordered_json(r.thickness[i]);
+    e["thickness"] = json_or_null(r.thickness[i]);
     e["thin"] = bool(r.thin[i]);
     e["status"] = analysis::status_name(r.status[i]);
     if (!r.brep_faces.empty()) e["brep_faces"] = r.brep_faces[i];  // CAD: faces sampled, smallest kept
     el.push_back(std::move(e));
   }
-  const std::string text = j.dump(1);
-  std::fwrite(text.data(), 1, text.size(), f);
-  std::fputc('\n', f);
+  write_json_document(f, j);
 }
 
 void write_vtp_result(std::FILE* f, const Scene& scene, const ThicknessResult& r) {
@@ -370,9 +369,8 @@ int run_thickness(const ThicknessCli& o) {
 }  // namespace
 
 std::function<int()> register_thickness(CLI::App& app) {
-  const auto [o, cmd] =
-      add_command<ThicknessCli>(app, "thickness", "Wall-thickness map per vertex or face (VTP, CSV or JSON)");
-  add_model_args(cmd, o->model, false);
+  const auto [o, cmd] = add_model_command<ThicknessCli>(
+      app, "thickness", "Wall-thickness map per vertex or face (VTP, CSV or JSON)", /*several=*/false);
   cmd->add_option("--method", o->method,
                   "ray: along the inward normal to where the ray leaves the solid; cone: shape diameter function "
                   "over --cone-rays rays; sphere: diameter of the largest inscribed ball touching the point")

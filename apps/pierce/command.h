@@ -9,6 +9,7 @@
 #include <string>
 
 #include "interrupt.h"
+#include "model_args.h"
 #include "output_file.h"
 #include "pierce/kernel.h"
 #include "progress.h"
@@ -63,6 +64,16 @@ struct NewCommand {
 template <class Options>
 NewCommand<Options> add_command(CLI::App& app, const std::string& name, const std::string& description) {
   return {std::make_shared<Options>(), app.add_subcommand(name, description)};
+}
+
+// Adds subcommand `name` that reads models: the positional MODEL argument(s) (more than one when
+// `several`) and the tessellation options, into Options::model (add_model_args).
+template <class Options>
+NewCommand<Options> add_model_command(CLI::App& app, const std::string& name, const std::string& description,
+                                      bool several = true) {
+  NewCommand<Options> c = add_command<Options>(app, name, description);
+  add_model_args(c.cmd, c.options->model, several);
+  return c;
 }
 
 // Each returns the callback that runs the subcommand (after parsing) and returns its exit code.

@@ -1,8 +1,6 @@
 // Overlap diagnostics: coplanar triangle pairs, interference along rays, per-triangle heat maps.
 #include <pybind11/stl.h>
 
-#include <cstring>
-
 #include "common.h"
 #include "pierce/analysis/overlaps.h"
 #include "progress.h"
@@ -27,13 +25,6 @@ struct InterferenceRecord {
   double entry[3];
   double exit[3];
 };
-
-template <typename T>
-pyb::array_t<T> vector_array(const std::vector<T>& v) {
-  pyb::array_t<T> a(static_cast<pyb::ssize_t>(v.size()));
-  if (!v.empty()) std::memcpy(a.mutable_data(), v.data(), v.size() * sizeof(T));
-  return a;
-}
 
 // A new numpy array with one Record per element of `items`, converted by to_record.
 template <class Record, class Item, class ToRecord>
@@ -79,10 +70,9 @@ void bind_overlaps(pyb::module_& m) {
       .def_readonly("opposite_facing", &CoplanarSolidPair::opposite_facing, "contacts")
       .def_readonly("area", &CoplanarSolidPair::area)
       .def_readonly("where", &CoplanarSolidPair::where)
-      .def("__repr__", [](const CoplanarSolidPair& p) {
-        return "<pierce.CoplanarSolidPair " + std::to_string(p.a) + "-" + std::to_string(p.b) + ": " +
-               std::to_string(p.pairs) + " pairs, area " + std::to_string(p.area) + ">";
-      });
+      .def("__repr__", pair_repr<CoplanarSolidPair>("CoplanarSolidPair", [](const CoplanarSolidPair& p) {
+        return std::to_string(p.pairs) + " pairs, area " + std::to_string(p.area);
+      }));
   pyb::class_<CoplanarReport>(m, "CoplanarReport")
       .def_readonly("tolerance", &CoplanarReport::tolerance)
       .def_property_readonly("pairs", &coplanar_pairs_array,
@@ -96,12 +86,8 @@ void bind_overlaps(pyb::module_& m) {
         CoplanarOptions o;
         o.tolerance = tolerance;
         o.min_area_rel = min_area_rel;
-        auto result = std::make_unique<CoplanarReport>();
-        PyScene::Use use(s);
-        run_with_progress(progress, cancel, 0, [&](ProgressState& st) {
-          *result = find_coplanar_overlaps(s.scene, o, [&](std::size_t d, std::size_t t) { return st.report(d, t); });
-        });
-        return result;
+        return run_analysis(s, progress, cancel, 0,
+                            [&](const Progress& p) { return find_coplanar_overlaps(s.scene, o, p); });
       },
       pyb::arg("scene"), pyb::kw_only(), pyb::arg("tolerance") = 0.0, pyb::arg("min_area_rel") = 1e-9,
       pyb::arg("progress") = pyb::none(), pyb::arg("cancel") = nullptr,
@@ -127,20 +113,18 @@ void bind_overlaps(pyb::module_& m) {
       .def_readonly("axis_max_depth", &InterferencePair::axis_max_depth)
       .def_readonly("penetration", &InterferencePair::penetration,
                     "smallest over axes of the largest axis-parallel depth (NaN: no axis ray)")
-      .def("__repr__", [](const InterferencePair& p) {
-        return "<pierce.InterferencePair " + std::to_string(p.a) + "-" + std::to_string(p.b) + ": " +
-               std::to_string(p.count) + " intervals, max depth " + std::to_string(p.max_depth) +
-               ", penetration " + std::to_string(p.penetration) + ">";
-      });
+      .def("__repr__", pair_repr<InterferencePair>("InterferencePair", [](const InterferencePair& p) {
+        return std::to_string(p.count) + " intervals, max depth " + std::to_string(p.max_depth) + ", penetration " +
+               std::to_string(p.penetration);
+      }));
   pyb::class_<ContactPair>(m, "ContactPair", "Solids a < b touching at a shared surface (no overlap).")
       .def_readonly("a", &ContactPair::a)
       .def_readonly("b", &ContactPair::b)
       .def_readonly("count", &ContactPair::count)
       .def_readonly("where", &ContactPair::where)
-      .def("__repr__", [](const ContactPair& p) {
-        return "<pierce.ContactPair " + std::to_string(p.a) + "-" + std::to_string(p.b) + ": " +
-               std::to_string(p.count) + " rays>";
-      });
+      .def("__repr__", pair_repr<ContactPair>("ContactPair", [](const ContactPair& p) {
+        return std::to_string(p.count) + " rays";
+      }));
   pyb::class_<RayOverlapReport>(m, "RayOverlapReport")
       .def_readonly("coplanar", &RayOverlapReport::coplanar)
       .def_property_readonly("intervals", &intervals_array,
@@ -186,12 +170,8 @@ void bind_overlaps(pyb::module_& m) {
         o.epsilon_rel = epsilon_rel;
         o.tie_tolerance_rel = tie_tolerance_rel;
         o.keep_intervals = keep_intervals;
-        auto result = std::make_unique<RayOverlapReport>();
-        PyScene::Use use(s);
-        run_with_progress(progress, cancel, rays.size(), [&](ProgressState& st) {
-          *result = analyse_ray_overlaps(s.accel(), rays, o, [&](std::size_t d, std::size_t t) { return st.report(d, t); });
-        });
-        return result;
+        return run_analysis(s, progress, cancel, rays.size(),
+                            [&](const Progress& p) { return analyse_ray_overlaps(s.accel(), rays, o, p); });
       },
       pyb::arg("scene"), pyb::arg("origins") = pyb::none(), pyb::arg("directions") = pyb::none(), pyb::kw_only(),
       pyb::arg("tmin") = 0.0, pyb::arg("tmax") = std::numeric_limits<double>::infinity(), pyb::arg("grid") = 64,

@@ -87,12 +87,9 @@ void bind_shotline(pyb::module_& m) {
         std::optional<CsgExpr> expr;
         if (csg) expr = parse_csg(*csg, s.scene);
         o.csg = expr ? &*expr : nullptr;
-        ShotResult result;
-        PyScene::Use use(s);
-        run_with_progress(progress, cancel, rays.size(), [&](ProgressState& st) {
-          result = shoot(s.accel(), rays, o, [&](std::size_t d, std::size_t t) { return st.report(d, t); });
-        });
-        return shot_arrays(result);
+        const auto result = run_analysis(s, progress, cancel, rays.size(),
+                                         [&](const Progress& p) { return shoot(s.accel(), rays, o, p); });
+        return shot_arrays(*result);
       },
       pyb::arg("scene"), pyb::arg("origins"), pyb::arg("directions"), pyb::kw_only(), pyb::arg("tmin") = 0.0,
       pyb::arg("tmax") = std::numeric_limits<double>::infinity(), pyb::arg("kernel") = default_kernel_name(),
@@ -119,9 +116,7 @@ void bind_shotline(pyb::module_& m) {
           }
           st.report(pts.size());
         });
-        pyb::array_t<std::uint8_t> a(static_cast<pyb::ssize_t>(cls.size()));
-        std::copy(cls.begin(), cls.end(), a.mutable_data());
-        return a;
+        return vector_array(cls);
       },
       pyb::arg("scene"), pyb::arg("points"), pyb::arg("csg"), pyb::kw_only(), pyb::arg("kernel") = default_kernel_name(),
       pyb::arg("tolerance_rel") = 1e-6, pyb::arg("progress") = pyb::none(), pyb::arg("cancel") = nullptr,
@@ -149,10 +144,9 @@ void bind_shotline(pyb::module_& m) {
       .def_readonly("axis_max_depth", &GqaPair::axis_max_depth)
       .def_readonly("penetration", &GqaPair::penetration)
       .def_readonly("volume", &GqaPair::volume)
-      .def("__repr__", [](const GqaPair& p) {
-        return "<pierce.GqaPair " + std::to_string(p.a) + "-" + std::to_string(p.b) + ": " +
-               std::to_string(p.count) + " intervals, penetration " + std::to_string(p.penetration) + ">";
-      });
+      .def("__repr__", pair_repr<GqaPair>("GqaPair", [](const GqaPair& p) {
+        return std::to_string(p.count) + " intervals, penetration " + std::to_string(p.penetration);
+      }));
   pyb::class_<GqaPass>(m, "GqaPass")
       .def_readonly("n", &GqaPass::n)
       .def_readonly("rays", &GqaPass::rays)
@@ -186,13 +180,10 @@ void bind_shotline(pyb::module_& m) {
         o.tie_tolerance_rel = tie_tolerance_rel;
         o.gap_min = gap_min;
         o.gap_max = gap_max;
-        auto result = std::make_unique<GqaResult>();
-        PyScene::Use use(s);
         // Progress is per pass; report it as rays done within the current pass.
-        run_with_progress(progress, cancel, 0, [&](ProgressState& st) {
-          *result = run_gqa(s.accel(), o, [&](int, std::size_t d, std::size_t t) { return st.report(d, t); });
+        return run_analysis(s, progress, cancel, 0, [&](const Progress& p) {
+          return run_gqa(s.accel(), o, [&](int, std::size_t d, std::size_t t) { return p(d, t); });
         });
-        return result;
       },
       pyb::arg("scene"), pyb::kw_only(), pyb::arg("tolerance") = 1e-3, pyb::arg("start_n") = 0,
       pyb::arg("max_n") = 1024, pyb::arg("kernel") = default_kernel_name(), pyb::arg("regions") = std::vector<std::string>{},

@@ -41,6 +41,29 @@ ThicknessOptions make_options(const PyScene& s, const std::string& method, const
   return o;
 }
 
+// Geometry ids from `ids`, one integer for all n items or an array of one per item, each in the
+// scene. `what` names the argument in the type and shape errors; out_of_scene(i, id) is the
+// message for item i's id outside the scene.
+template <class Message>
+std::vector<std::uint32_t> geometry_ids(const PyScene& s, const pyb::handle& ids, std::size_t n,
+                                        const std::string& what, Message out_of_scene) {
+  auto g = pyb::array_t<std::int64_t, pyb::array::c_style | pyb::array::forcecast>::ensure(ids);
+  if (!g) {
+    PyErr_Clear();
+    throw pyb::type_error(what + " must be an integer or an array of geometry ids");
+  }
+  if (g.ndim() > 1 || (g.ndim() == 1 && static_cast<std::size_t>(g.size()) != n))
+    throw pyb::value_error(what + " must be one id or one per point");
+  std::vector<std::uint32_t> geom(n);
+  const auto n_geoms = static_cast<std::int64_t>(s.scene.geometries().size());
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::int64_t v = g.ndim() == 0 ? *g.data() : g.data()[i];
+    if (v < 0 || v >= n_geoms) throw pyb::value_error(out_of_scene(i, v));
+    geom[i] = static_cast<std::uint32_t>(v);
+  }
+  return geom;
+}
+
 }  // namespace
 
 void bind_thickness(pyb::module_& m) {
@@ -144,12 +167,8 @@ void bind_thickness(pyb::module_& m) {
         const ThicknessOptions o = make_options(s, method, per, max_distance, min_thickness, cone_rays, cone_angle,
                                                 cone_aggregate, sphere_max_iterations, tie_tolerance_rel, kernel,
                                                 std::move(solids), percentiles, histogram_bins);
-        auto result = std::make_unique<ThicknessResult>();
-        PyScene::Use use(s);
-        run_with_progress(progress, cancel, 0, [&](ProgressState& st) {
-          *result = compute_thickness(s.accel(), o, [&](std::size_t d, std::size_t t) { return st.report(d, t); });
-        });
-        return result;
+        return run_analysis(s, progress, cancel, 0,
+                            [&](const Progress& p) { return compute_thickness(s.accel(), o, p); });
       },
       pyb::arg("scene"), pyb::kw_only(), pyb::arg("method") = "ray", pyb::arg("per") = "vertex",
       pyb::arg("max_distance") = std::numeric_limits<double>::infinity(), pyb::arg("min_thickness") = 0.0,
@@ -181,31 +200,14 @@ void bind_thickness(pyb::module_& m) {
           nv.resize(n);
           for (std::size_t i = 0; i < n; ++i) nv[i] = {nn.at(i, 0), nn.at(i, 1), nn.at(i, 2)};
         }
-        auto g = pyb::array_t<std::int64_t, pyb::array::c_style | pyb::array::forcecast>::ensure(solids);
-        if (!g) {
-          PyErr_Clear();
-          throw pyb::type_error("solids must be an integer or an array of geometry ids");
-        }
-        if (g.ndim() > 1 || (g.ndim() == 1 && static_cast<std::size_t>(g.size()) != n))
-          throw pyb::value_error("solids must be one id or one per point");
-        std::vector<std::uint32_t> geom(n);
-        const auto n_geoms = static_cast<std::int64_t>(s.scene.geometries().size());
-        for (std::size_t i = 0; i < n; ++i) {
-          const std::int64_t v = g.ndim() == 0 ? *g.data() : g.data()[i];
-          if (v < 0 || v >= n_geoms)
-            throw pyb::value_error("thickness_at: point " + std::to_string(i) + ": solid " + std::to_string(v) +
-                                   " is not in the scene");
-          geom[i] = static_cast<std::uint32_t>(v);
-        }
+        const std::vector<std::uint32_t> geom = geometry_ids(s, solids, n, "solids", [](std::size_t i, std::int64_t v) {
+          return "thickness_at: point " + std::to_string(i) + ": solid " + std::to_string(v) + " is not in the scene";
+        });
         const ThicknessOptions o = make_options(s, method, "face", max_distance, min_thickness, cone_rays, cone_angle,
                                                 cone_aggregate, sphere_max_iterations, tie_tolerance_rel, kernel, {},
                                                 percentiles, histogram_bins);
-        auto result = std::make_unique<ThicknessResult>();
-        PyScene::Use use(s);
-        run_with_progress(progress, cancel, 0, [&](ProgressState& st) {
-          *result = thickness_at(s.accel(), geom, p, nv, o, [&](std::size_t d, std::size_t t) { return st.report(d, t); });
-        });
-        return result;
+        return run_analysis(s, progress, cancel, 0,
+                            [&](const Progress& report) { return thickness_at(s.accel(), geom, p, nv, o, report); });
       },
       pyb::arg("scene"), pyb::arg("solids"), pyb::arg("points"), pyb::arg("normals") = pyb::none(), pyb::kw_only(),
       pyb::arg("method") = "ray", pyb::arg("max_distance") = std::numeric_limits<double>::infinity(),
@@ -228,31 +230,14 @@ void bind_thickness(pyb::module_& m) {
         const KernelKind kind = kernel_from_name(kernel);
         if (!is_exact(kind)) throw pyb::value_error("thickness_along: kernel must be exact");
         const std::vector<Ray> rays = make_rays(points, inward, pyb::float_(0.0), pyb::float_(max_distance));
-        auto g = pyb::array_t<std::int64_t, pyb::array::c_style | pyb::array::forcecast>::ensure(geoms);
-        if (!g) {
-          PyErr_Clear();
-          throw pyb::type_error("geoms must be an integer or an array of geometry ids");
-        }
-        if (g.ndim() > 1 || (g.ndim() == 1 && static_cast<std::size_t>(g.size()) != rays.size()))
-          throw pyb::value_error("geoms must be one id or one per point");
-        std::vector<std::uint32_t> geom(rays.size());
-        const auto n_geoms = static_cast<std::int64_t>(s.scene.geometries().size());
-        for (std::size_t i = 0; i < rays.size(); ++i) {
-          const std::int64_t v = g.ndim() == 0 ? *g.data() : g.data()[i];
-          if (v < 0 || v >= n_geoms)
-            throw pyb::value_error("geometry id " + std::to_string(v) + " is not in the scene");
-          geom[i] = static_cast<std::uint32_t>(v);
-        }
-        std::vector<double> out;
-        PyScene::Use use(s);
-        run_with_progress(progress, cancel, rays.size(), [&](ProgressState& st) {
-          out = thickness_along(s.accel(), geom, rays, max_distance, tie_tolerance_rel, kind,
-                                [&](std::size_t done, std::size_t total) { return st.report(done, total); })
-                    .thickness;
+        const std::vector<std::uint32_t> geom =
+            geometry_ids(s, geoms, rays.size(), "geoms", [](std::size_t, std::int64_t v) {
+              return "geometry id " + std::to_string(v) + " is not in the scene";
+            });
+        const auto along = run_analysis(s, progress, cancel, rays.size(), [&](const Progress& p) {
+          return thickness_along(s.accel(), geom, rays, max_distance, tie_tolerance_rel, kind, p);
         });
-        pyb::array_t<double> a(static_cast<pyb::ssize_t>(out.size()));
-        std::copy(out.begin(), out.end(), a.mutable_data());
-        return a;
+        return vector_array(along->thickness);
       },
       pyb::arg("scene"), pyb::arg("geoms"), pyb::arg("points"), pyb::arg("inward"), pyb::kw_only(),
       pyb::arg("max_distance") = std::numeric_limits<double>::infinity(), pyb::arg("tie_tolerance_rel") = 1e-6,

@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 
 #include <atomic>
+#include <cstring>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -15,7 +16,9 @@
 #include "pierce/io/cad_io.h"
 #include "pierce/kernel.h"
 #include "pierce/kernel_names.h"
+#include "pierce/progress.h"
 #include "pierce/scene.h"
+#include "progress.h"
 
 namespace pierce::py {
 
@@ -54,6 +57,19 @@ class PyScene {
   std::atomic<int> users_{0};
 };
 
+// Runs `analysis(progress)` on a worker thread (run_with_progress) with `s` marked in use, and
+// returns its result on the heap for the Python object to own. `analysis` reports through the
+// pierce::Progress it is given; `total` is the initial total (0 when unknown).
+template <class Analysis>
+auto run_analysis(PyScene& s, const pyb::object& progress, CancelToken* cancel, std::size_t total, Analysis analysis) {
+  auto result = std::make_unique<decltype(analysis(Progress{}))>();
+  PyScene::Use use(s);
+  run_with_progress(progress, cancel, total, [&](ProgressState& st) {
+    *result = analysis([&st](std::size_t done, std::size_t all) { return st.report(done, all); });
+  });
+  return result;
+}
+
 // (N, 3) float64 rows from any array-like (lists, float32, non-contiguous): no copy when the
 // input already is C-contiguous float64. `what` names the argument in error messages.
 pyb::array_t<double, pyb::array::c_style> as_points(const pyb::handle& obj, const char* what);
@@ -76,6 +92,22 @@ pyb::array readonly_view(const T* data, std::size_t count, std::size_t cols, con
   pyb::array a(pyb::dtype::of<T>(), shape, strides, data, owner);
   a.attr("flags").attr("writeable") = false;
   return a;
+}
+
+// A new (N,) numpy array holding a copy of `v`.
+template <typename T>
+pyb::array_t<T> vector_array(const std::vector<T>& v) {
+  pyb::array_t<T> a(static_cast<pyb::ssize_t>(v.size()));
+  if (!v.empty()) std::memcpy(a.mutable_data(), v.data(), v.size() * sizeof(T));
+  return a;
+}
+
+// The __repr__ of a record of solids a and b: "<pierce.<type> a-b: <details(p)>>".
+template <class Pair, class Details>
+auto pair_repr(const char* type, Details details) {
+  return [type = std::string(type), details](const Pair& p) {
+    return "<pierce." + type + " " + std::to_string(p.a) + "-" + std::to_string(p.b) + ": " + details(p) + ">";
+  };
 }
 
 // The getter of a read-only property viewing the vector member `column` of the bound object

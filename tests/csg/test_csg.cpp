@@ -117,7 +117,7 @@ TEST(SolidReference, NamesHashIdsAndBareIds) {
   EXPECT_EQ(find_solids(w->scene, "4"), Ids{});
   EXPECT_EQ(find_solids(w->scene, "b"), Ids{});
 
-  // In an expression: a bare id now works as in --solid; an unquoted #N stays the id.
+  // In an expression: a bare id works as in --solid; an unquoted #N stays the id.
   EXPECT_EQ(parse_csg("union(3, \"#0\", #0, 2)", w->scene).leaves,
             (std::vector<Ids>{{3}, {3}, {0}, {1}}));
   EXPECT_NE(parse_error("union(a, 9)", w->scene).find("unknown solid name '9'"), std::string::npos);

@@ -15,11 +15,8 @@ LICENSE_TITLES = {"BSD-3-Clause": "BSD 3-Clause License", "MIT": "MIT License",
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--source", required=True)
-    ap.add_argument("--version", required=True)
-    ap.add_argument("--license", required=True)
-    ap.add_argument("--maintainer-name", required=True)
-    ap.add_argument("--maintainer-email", required=True)
+    for name in ("source", "version", "license", "maintainer-name", "maintainer-email"):
+        ap.add_argument("--" + name, required=True)
     a = ap.parse_args()
     errors = []
 

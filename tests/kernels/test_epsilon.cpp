@@ -155,7 +155,7 @@ TEST(Epsilon, NeverReportsDegenerateTriangles) {
   }
 }
 
-// A kernel builds only what it uses (issue 12): the epsilon kernel traces Embree's native triangles
+// A kernel builds only what it uses: the epsilon kernel traces Embree's native triangles
 // and needs neither the exact Embree scene nor the float binary BVH whose triangles that scene
 // holds; an exact Embree kernel builds both. Accel::memory_bytes counts the binary BVH once built.
 TEST(Epsilon, BuildsNeitherTheExactSceneNorItsBvh) {

@@ -134,7 +134,7 @@ TEST(Corpus, DoubleKernelsExactOnInputFloatCannotHold) {
         float_errors += !compare(got, want, {}, CompareMode::strict, 24).exact();
       }
       // These cases exist to show float is not enough: the float kernel must differ somewhere.
-      EXPECT_GT(float_errors, 0u) << c.family << " [" << c.name << "] no longer needs the double kernels";
+      EXPECT_GT(float_errors, 0u) << c.family << " [" << c.name << "] does not need the double kernels";
     }
   }
 }

@@ -8,12 +8,11 @@ depth, penetration) and contact pairs.
 The demo's .vtm/.vtp files are read here with the standard library (xml.etree + base64), not with
 VTK's XML reader: Debian 12's VTK 9.2 reader feeds expat incrementally and stops it at an
 <AppendedData> section, which Debian's expat 2.5.0-1+deb12u2 and later (reparse deferral, the
-CVE-2023-52425 fix) no longer honours, so files with raw appended data (ParaView's default) fail to read back with
+CVE-2023-52425 fix) do not honour, so files with raw appended data (ParaView's default) fail to read back with
 "not well-formed (invalid token)" depending on where the data bytes fall. The demo writes inline
 base64 (DataMode=Binary); this check asserts that (no <AppendedData>), so a regression is reported
 as such instead of as an intermittent reader error, and it then parses the whole document in one go.
 """
-import argparse
 import base64
 import csv
 import math
@@ -23,6 +22,8 @@ import subprocess
 import sys
 import xml.etree.ElementTree as ET
 import zlib
+
+import pvbatch_main
 
 # VTK XML DataArray types -> struct format characters.
 VTK_TYPES = {"Int8": "b", "UInt8": "B", "Int16": "h", "UInt16": "H", "Int32": "i", "UInt32": "I",
@@ -206,10 +207,7 @@ def same(a, b):
 
 
 def main():
-    p = argparse.ArgumentParser()
-    for name in ("pvbatch", "demo", "plugin", "pierce", "model", "out"):
-        p.add_argument("--" + name, required=True)
-    args = p.parse_args()
+    args = pvbatch_main.required_options("pvbatch", "demo", "plugin", "pierce", "model", "out")
     os.makedirs(args.out, exist_ok=True)
     out = lambda name: os.path.join(args.out, name)  # noqa: E731
 

@@ -7,7 +7,6 @@ whatever happens.
 
     pvpython pv_mpi_pvserver.py --mpiexec mpiexec --pvserver pvserver --plugin P.so --work WORK
 """
-import argparse
 import json
 import os
 import signal
@@ -17,6 +16,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import pvbatch_main  # noqa: E402
 from pv_mpi_case import records, table_rows  # noqa: E402
 
 from paraview import servermanager  # noqa: E402
@@ -30,12 +30,7 @@ def free_port():
 
 
 def main():
-    p = argparse.ArgumentParser()
-    p.add_argument("--mpiexec", required=True)
-    p.add_argument("--pvserver", required=True)
-    p.add_argument("--plugin", required=True)
-    p.add_argument("--work", required=True)
-    args = p.parse_args()
+    args = pvbatch_main.required_options("mpiexec", "pvserver", "plugin", "work")
     port = free_port()
     log_path = os.path.join(args.work, "pvserver.log")
     log = open(log_path, "w")

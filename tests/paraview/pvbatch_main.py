@@ -1,5 +1,16 @@
-"""How the pvbatch test scripts end, written once."""
+"""What the ParaView test scripts share, written once: their required options and how the pvbatch
+scripts end."""
+import argparse
 import sys
+
+
+def required_options(*names):
+    """The parsed command line of a script whose options are all required strings: --name for each
+    of `names`, read back as args.name (dashes as underscores)."""
+    p = argparse.ArgumentParser()
+    for name in names:
+        p.add_argument("--" + name, required=True)
+    return p.parse_args()
 
 
 def run(main):

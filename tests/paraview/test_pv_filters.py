@@ -6,7 +6,6 @@ check each filter's arrays against the assembly's known geometry (tests/vtk/step
 
     pvbatch test_pv_filters.py --plugin PierceParaView.so --step assembly.step
 """
-import argparse
 import os
 import sys
 
@@ -49,10 +48,7 @@ def column(table, name):
 
 
 def main():
-    p = argparse.ArgumentParser()
-    p.add_argument("--plugin", required=True)
-    p.add_argument("--step", required=True)
-    args = p.parse_args()
+    args = pvbatch_main.required_options("plugin", "step")
 
     LoadPlugin(args.plugin, ns=globals())
 

@@ -4,16 +4,17 @@ colour map (2 mm walls blue, the plate's 10 mm sides red).
 
     xvfb-run -a pvbatch test_pv_render.py --plugin PierceParaView.so --step assembly.step --png out.png
 """
-import argparse
 import os
 import sys
 
-from paraview.simple import (ColorBy, CreateView, GetColorTransferFunction, LoadPlugin, OpenDataFile,
-                             ResetCamera, SaveScreenshot, Show)
+from paraview.simple import CreateView, LoadPlugin, OpenDataFile, SaveScreenshot
 from vtkmodules.vtkIOImage import vtkPNGReader
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(HERE, "..", "..", "plugins", "paraview", "screenshot"))
 import pvbatch_main  # noqa: E402
+from thickness_view import show_thickness  # noqa: E402
 
 BACKGROUND = (1.0, 1.0, 1.0)
 
@@ -38,11 +39,7 @@ def pixel_stats(path):
 
 
 def main():
-    p = argparse.ArgumentParser()
-    p.add_argument("--plugin", required=True)
-    p.add_argument("--step", required=True)
-    p.add_argument("--png", required=True)
-    args = p.parse_args()
+    args = pvbatch_main.required_options("plugin", "step", "png")
 
     LoadPlugin(args.plugin, ns=globals())
     reader = OpenDataFile(args.step)
@@ -54,15 +51,7 @@ def main():
     if hasattr(view, "UseColorPaletteForBackground"):
         view.UseColorPaletteForBackground = 0
     view.Background = list(BACKGROUND)
-    display = Show(thickness, view)
-    ColorBy(display, ("CELLS", "Thickness"))
-    lut = GetColorTransferFunction("Thickness")
-    lut.ApplyPreset("Jet", True)
-    lut.RescaleTransferFunction(2.0, 10.0)
-    view.CameraPosition = [25, -20, 18]
-    view.CameraFocalPoint = [5, 5, 1]
-    view.CameraViewUp = [0, 0, 1]
-    ResetCamera(view)
+    show_thickness(thickness, view, [25, -20, 18], [5, 5, 1])
     if os.path.exists(args.png):
         os.remove(args.png)  # the test's own output from a previous run
     SaveScreenshot(args.png, view, ImageResolution=[400, 300])

@@ -6,6 +6,7 @@
 #include <limits>
 #include <set>
 #include <tuple>
+#include <utility>
 #include <sstream>
 
 #include <vtkCellArray.h>
@@ -115,39 +116,35 @@ void WriteThicknessTable(const std::vector<pa::SolidThickness>& solids, const st
   };
   auto id = column(vtkSmartPointer<vtkIntArray>::New(), "SolidId");
   auto name = column(vtkSmartPointer<vtkStringArray>::New(), "Name");
-  auto elements = column(vtkSmartPointer<vtkIdTypeArray>::New(), "Elements");
-  auto valid = column(vtkSmartPointer<vtkIdTypeArray>::New(), "Valid");
-  auto no_exit = column(vtkSmartPointer<vtkIdTypeArray>::New(), "NoExit");
-  auto no_normal = column(vtkSmartPointer<vtkIdTypeArray>::New(), "NoNormal");
-  auto thin = column(vtkSmartPointer<vtkIdTypeArray>::New(), "Thin");
-  auto tessellation = column(vtkSmartPointer<vtkIdTypeArray>::New(), "Tessellation");
+  // The sample counts, in column order.
+  static constexpr std::pair<const char*, std::size_t pa::SolidThickness::*> kCounts[] = {
+      {"Elements", &pa::SolidThickness::elements}, {"Valid", &pa::SolidThickness::valid},
+      {"NoExit", &pa::SolidThickness::no_exit},    {"NoNormal", &pa::SolidThickness::no_normal},
+      {"Thin", &pa::SolidThickness::thin},         {"Tessellation", &pa::SolidThickness::tessellation}};
+  std::vector<vtkSmartPointer<vtkIdTypeArray>> counts;
+  for (const auto& count : kCounts) counts.push_back(column(vtkSmartPointer<vtkIdTypeArray>::New(), count.first));
   auto on_brep = column(vtkSmartPointer<vtkUnsignedCharArray>::New(), "OnBRep");
-  auto min = column(vtkSmartPointer<vtkDoubleArray>::New(), "Min");
-  auto max = column(vtkSmartPointer<vtkDoubleArray>::New(), "Max");
-  auto mean = column(vtkSmartPointer<vtkDoubleArray>::New(), "Mean");
-  std::vector<vtkSmartPointer<vtkDoubleArray>> percentiles;
+  // Min, Max, Mean and P<q> per percentile: NaN for a solid without a valid sample.
+  std::vector<vtkSmartPointer<vtkDoubleArray>> statistics;
+  for (const char* title : {"Min", "Max", "Mean"})
+    statistics.push_back(column(vtkSmartPointer<vtkDoubleArray>::New(), title));
   for (const double q : percentile_list) {
     std::ostringstream n;
     n << 'P' << q;
-    percentiles.push_back(column(vtkSmartPointer<vtkDoubleArray>::New(), n.str()));
+    statistics.push_back(column(vtkSmartPointer<vtkDoubleArray>::New(), n.str()));
   }
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (const pa::SolidThickness& s : solids) {
     id->InsertNextValue(static_cast<int>(s.geom));
     name->InsertNextValue(s.name);
-    elements->InsertNextValue(static_cast<vtkIdType>(s.elements));
-    valid->InsertNextValue(static_cast<vtkIdType>(s.valid));
-    no_exit->InsertNextValue(static_cast<vtkIdType>(s.no_exit));
-    no_normal->InsertNextValue(static_cast<vtkIdType>(s.no_normal));
-    thin->InsertNextValue(static_cast<vtkIdType>(s.thin));
-    tessellation->InsertNextValue(static_cast<vtkIdType>(s.tessellation));
+    for (std::size_t k = 0; k < counts.size(); ++k)
+      counts[k]->InsertNextValue(static_cast<vtkIdType>(s.*kCounts[k].second));
     on_brep->InsertNextValue(s.exact ? 1 : 0);
+    std::vector<double> values{s.summary.min, s.summary.max, s.summary.mean};
+    for (std::size_t k = 0; k < percentile_list.size(); ++k)
+      values.push_back(k < s.summary.percentiles.size() ? s.summary.percentiles[k].second : nan);
     const bool any = s.summary.count > 0;
-    min->InsertNextValue(any ? s.summary.min : nan);
-    max->InsertNextValue(any ? s.summary.max : nan);
-    mean->InsertNextValue(any ? s.summary.mean : nan);
-    for (std::size_t k = 0; k < percentiles.size(); ++k)
-      percentiles[k]->InsertNextValue(any && k < s.summary.percentiles.size() ? s.summary.percentiles[k].second : nan);
+    for (std::size_t k = 0; k < statistics.size(); ++k) statistics[k]->InsertNextValue(any ? values[k] : nan);
   }
 }
 

@@ -34,15 +34,7 @@ struct HitKey {
 inline HitKey key_of(const Hit& h) { return {h.t, h.geom, h.prim, h.enter}; }
 // The full record of a ranked candidate (the inverse of key_of).
 inline Hit hit_of(const HitKey& k, float u, float v, const Vec3f& ng) {
-  Hit h;
-  h.t = k.t;
-  h.geom = k.geom;
-  h.prim = k.prim;
-  h.enter = k.enter;
-  h.u = u;
-  h.v = v;
-  h.ng = ng;
-  return h;
+  return {.t = k.t, .geom = k.geom, .prim = k.prim, .u = u, .v = v, .ng = ng, .enter = k.enter};
 }
 
 // How hits at equal t are ranked. `geom_prim` is Wald et al.'s (t, geom, prim).
@@ -83,8 +75,8 @@ template <class It>
 
 // Sorts the hits [first, last) in `order`. A ray holds few hits as a rule: up to 16 are sorted by
 // insertion inline (what std::sort does with so few, without its calls), more by std::sort. Inline
-// wherever hits are gathered, so that `filter` and `queue`'s gathering pass sort alike (GCC had
-// left std::sort's insertion step inline in one and out of line in the other).
+// wherever hits are gathered, so that `filter` and `queue`'s gathering pass sort alike (left to
+// GCC, std::sort's insertion step can be inline in one and out of line in the other).
 template <class It>
 [[gnu::always_inline]] inline void sort_hits(It first, It last, const HitOrder& order) {
   if (last - first > 16) {

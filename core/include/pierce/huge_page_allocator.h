@@ -10,10 +10,11 @@
 // advise_huge_pages() gives the same advice for a buffer allocated elsewhere (a std::vector the
 // public API hands out, such as a loaded mesh or a result table), before it is first written. Each
 // 4 KB page of a fresh buffer is otherwise a page fault of its own, and on virtual machines a fault
-// costs microseconds: the 1.6 M-triangle shell of pierce_bench_thickness took about 95 000 faults to
-// load, build and trace with 4 KB pages, most of them in buffers filled once at full speed. (glibc
-// can advise every large malloc() buffer, GLIBC_TUNABLES=glibc.malloc.hugetlb=1, but only from the
-// environment at start-up, which a library does not control.)
+// costs microseconds: with 4 KB pages, `pierce_bench_thickness` takes about 95 000 faults to load,
+// build and trace its 1.6 M-triangle shell (`/usr/bin/time -v` counts them), most of them in
+// buffers filled once at full speed. (glibc can advise every large malloc() buffer,
+// GLIBC_TUNABLES=glibc.malloc.hugetlb=1, but only from the environment at start-up, which a
+// library does not control.)
 #include <sys/mman.h>
 
 #include <cstddef>

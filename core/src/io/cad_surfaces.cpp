@@ -92,8 +92,9 @@ struct CadSurfaces::Intersectors {
   tbb::enumerable_thread_specific<std::map<std::uint32_t, std::unique_ptr<OfGeom>>> per_thread;
 };
 
-// BRepTopAdaptor_FClass2d::Perform is const but not safe to call from two threads at once (it
-// crashed so under TBB), so every thread builds its own classifier of a face on first use.
+// BRepTopAdaptor_FClass2d::Perform is const but not safe to call from two threads at once
+// (concurrent calls from TBB workers crash), so every thread builds its own classifier of a face
+// on first use.
 struct CadSurfaces::Classifiers {
   struct Slot {
     bool built = false;

@@ -1,11 +1,11 @@
 """Run by `paraview --script=...` (make_screenshot.sh): loads the Pierce plugin, opens the model,
 applies Pierce Thickness coloured by Thickness, then writes the marker file so the caller knows
 the GUI is ready to be captured. Paths come from the environment: PIERCE_PLUGIN, PIERCE_MODEL,
-PIERCE_MARKER."""
+PIERCE_MARKER, and PYTHONPATH for thickness_view.py next to this script."""
 import os
 
-from paraview.simple import (ColorBy, GetActiveViewOrCreate, GetColorTransferFunction, GetDisplayProperties,
-                             Hide, LoadPlugin, OpenDataFile, Render, ResetCamera, SetActiveSource, Show)
+from paraview.simple import GetActiveViewOrCreate, Hide, LoadPlugin, OpenDataFile, Render, SetActiveSource
+from thickness_view import show_thickness
 
 LoadPlugin(os.environ["PIERCE_PLUGIN"], ns=globals())
 model = OpenDataFile(os.environ["PIERCE_MODEL"])
@@ -15,16 +15,8 @@ thickness.MinThickness = 3.0
 
 view = GetActiveViewOrCreate("RenderView")
 Hide(model, view)
-display = Show(thickness, view)
-ColorBy(display, ("CELLS", "Thickness"))
+display = show_thickness(thickness, view, [26, -22, 20], [5, 5, 1.5])
 display.SetScalarBarVisibility(view, True)
-lut = GetColorTransferFunction("Thickness")
-lut.ApplyPreset("Jet", True)
-lut.RescaleTransferFunction(2.0, 10.0)
-view.CameraPosition = [26, -22, 20]
-view.CameraFocalPoint = [5, 5, 1.5]
-view.CameraViewUp = [0, 0, 1]
-ResetCamera(view)
 view.CameraParallelScale = 7
 SetActiveSource(thickness)
 Render(view)

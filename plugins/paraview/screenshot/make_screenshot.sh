@@ -24,6 +24,7 @@ trap 'rm -rf "$work"' EXIT
 
 # -noreset: see tests/paraview/CMakeLists.txt.
 PIERCE_PLUGIN=$plugin PIERCE_MODEL=$model PIERCE_MARKER=$work/ready PIERCE_SHOT=$work/shot.png \
+PYTHONPATH="$here${PYTHONPATH:+:$PYTHONPATH}" \
 xvfb-run -a -s "-screen 0 1280x800x24 -noreset" bash -c '
   paraview --dr --script="$0" &
   gui=$!

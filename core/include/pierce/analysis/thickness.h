@@ -32,7 +32,7 @@
 // meets or leaves through one, or finds no exit in a closed solid (max_distance infinite)
 // where the B-rep has none either, or whose projection fails, gets status `tessellation` and
 // no thickness: it is an artefact of the mesh, counted per solid and left out of the
-// statistics. Meshes (STL, OBJ, OFF, PLY) are measured as before, bit for bit.
+// statistics. Meshes (STL, OBJ, OFF, PLY) are measured on the mesh alone: none of this applies.
 #include <cstddef>
 #include <cstdint>
 #include <limits>
