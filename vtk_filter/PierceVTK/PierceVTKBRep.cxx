@@ -104,7 +104,7 @@ bool UseLink(const Surfaces& surfaces, std::uint32_t g, GeometryLink& gl, std::s
     pierce::registered_cad_model(static_cast<std::int64_t>(gl.model));
   if (!model) {
     why = name + ": its B-rep is not loaded in this process (the model the Pierce CAD reader read has been released, "
-                 "or the data were read in another session): measured on its mesh. Read the file again with the "
+                 "or the data were read by another process): measured on its mesh. Read the file again with the "
                  "Pierce CAD reader to measure on the B-rep";
     return false;
   }
