@@ -43,7 +43,7 @@ struct HitsOptions {
 // Exit code when an exact kernel disagrees with the consensus.
 constexpr int kExitExactDisagreement = 3;
 
-using Results = std::vector<std::vector<Hit>>;
+using Results = HitBatch;
 
 std::string kernel_list() { return kernel_name_list() + ", all"; }
 
@@ -74,7 +74,7 @@ int run_single(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays
   Results results;
   double secs = 0;
   if (!trace(accel, kind, rays, o, results, secs)) return cancelled();
-  if (!write_csv(o, rays.size(), [&](std::size_t i) { return std::span<const Hit>(results[i]); })) return cancelled();
+  if (!write_csv(o, rays.size(), [&](std::size_t i) { return results.of(i); })) return cancelled();
   return 0;
 }
 
@@ -84,12 +84,6 @@ struct Row {
   std::size_t hits = 0;
   HitDiff diff;
 };
-
-std::size_t count_hits(const Results& r) {
-  std::size_t n = 0;
-  for (const auto& l : r) n += l.size();
-  return n;
-}
 
 // Rays on which one exact kernel's lists differ from the reference kernel's, sorted by ray.
 using Deviations = std::vector<std::pair<std::size_t, std::vector<Hit>>>;
@@ -161,14 +155,14 @@ int run_all(const Accel& accel, const std::vector<Ray>& rays, const HitsOptions&
     Row row;
     row.kind = exact[e];
     if (!trace(accel, exact[e], rays, o, res, row.secs)) return cancelled();
-    row.hits = count_hits(res);
+    row.hits = res.hits.size();
     rows.push_back(row);
     if (e == 0) {
       reference = std::move(res);
       continue;
     }
     for (std::size_t i = 0; i < n; ++i)
-      if (!same_hits(reference[i], res[i])) deviations[e].emplace_back(i, std::move(res[i]));
+      if (!same_hits(reference.of(i), res.of(i))) deviations[e].emplace_back(i, std::vector<Hit>(res.of(i).begin(), res.of(i).end()));
   }
 
   // Consensus where some exact kernel deviates from the reference.
@@ -181,7 +175,7 @@ int run_all(const Accel& accel, const std::vector<Ray>& rays, const HitsOptions&
   std::size_t no_majority = 0;
   auto list_of = [&](std::size_t e, std::size_t ray) -> std::span<const Hit> {
     const std::vector<Hit>* d = find_deviation(deviations[e], ray);
-    return d ? *d : reference[ray];
+    return d ? std::span<const Hit>(*d) : reference.of(ray);
   };
   for (std::size_t ray : contested) {
     std::vector<std::span<const Hit>> lists;
@@ -189,12 +183,12 @@ int run_all(const Accel& accel, const std::vector<Ray>& rays, const HitsOptions&
     bool majority = false;
     const std::size_t winner = consensus_index(lists, majority);
     no_majority += !majority;
-    if (!same_hits(lists[winner], reference[ray]))
+    if (!same_hits(lists[winner], reference.of(ray)))
       overrides.emplace_back(ray, std::vector<Hit>(lists[winner].begin(), lists[winner].end()));
   }
   auto consensus = [&](std::size_t ray) -> std::span<const Hit> {
     const std::vector<Hit>* c = find_deviation(overrides, ray);
-    return c ? *c : reference[ray];
+    return c ? std::span<const Hit>(*c) : reference.of(ray);
   };
 
   // Exact kernels can only differ from the consensus on contested rays.
@@ -212,8 +206,8 @@ int run_all(const Accel& accel, const std::vector<Ray>& rays, const HitsOptions&
     Row row;
     row.kind = k;
     if (!trace(accel, k, rays, o, res, row.secs)) return cancelled();
-    row.hits = count_hits(res);
-    for (std::size_t i = 0; i < n; ++i) diff_hits(consensus(i), res[i], row.diff);
+    row.hits = res.hits.size();
+    for (std::size_t i = 0; i < n; ++i) diff_hits(consensus(i), res.of(i), row.diff);
     rows.push_back(row);
   }
   std::sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) {
@@ -221,8 +215,8 @@ int run_all(const Accel& accel, const std::vector<Ray>& rays, const HitsOptions&
     return pos(a.kind) < pos(b.kind);
   });
 
-  std::size_t consensus_hits = count_hits(reference);
-  for (const auto& [ray, list] : overrides) consensus_hits += list.size() - reference[ray].size();
+  std::size_t consensus_hits = reference.hits.size();
+  for (const auto& [ray, list] : overrides) consensus_hits += list.size() - reference.of(ray).size();
   std::printf("%zu rays, exact consensus %zu hits (majority of %zu exact kernels)\n", n, consensus_hits, exact.size());
   print_table(rows, n);
   if (no_majority) std::printf("%zu rays have no majority among the exact kernels\n", no_majority);

@@ -1,5 +1,8 @@
 #include "pierce/kernel.h"
 
+#include <tbb/parallel_for_each.h>
+
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <mutex>
@@ -179,13 +182,46 @@ void collect_hits(HitIterator& it, const Ray& ray, std::size_t max_hits, std::ve
   it.collect(ray, max_hits, out);
 }
 
-bool trace_batch(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays, std::size_t max_hits,
-                 std::vector<std::vector<Hit>>& result, const KernelOptions& opts,
-                 const Progress& progress) {
-  result.assign(rays.size(), {});
-  tbb::enumerable_thread_specific<HitIterator> iters([&] { return HitIterator(accel, kind, opts); });
-  return parallel_for_items(rays.size(), 256, iters, progress,
-                            [&](HitIterator& it, std::size_t i) { collect_hits(it, rays[i], max_hits, result[i]); });
+bool trace_batch(const Accel& accel, KernelKind kind, std::span<const Ray> rays, std::size_t max_hits,
+                 HitBatch& out, const KernelOptions& opts, const Progress& progress) {
+  const std::size_t n = rays.size();
+  out.offsets.assign(n + 1, 0);
+  out.hits.clear();
+  // Pass 1: each thread appends the hits of its chunks of rays to its own buffer and notes where
+  // each chunk starts there; ray i's hit count goes to offsets[i + 1].
+  struct Chunk {
+    std::size_t first_ray, end_ray, first_hit;
+  };
+  struct Worker {
+    HitIterator it;
+    std::vector<Hit> hits;
+    std::vector<Chunk> chunks;
+  };
+  tbb::enumerable_thread_specific<Worker> workers([&] { return Worker{HitIterator(accel, kind, opts), {}, {}}; });
+  ProgressTracker tracker(n, progress);
+  constexpr std::size_t kGrain = 256;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+    if (tracker.stopped()) return;
+    Worker& w = workers.local();
+    w.chunks.push_back({r.begin(), r.end(), w.hits.size()});
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const std::size_t before = w.hits.size();
+      w.it.collect(rays[i], max_hits, w.hits);
+      out.offsets[i + 1] = w.hits.size() - before;
+    }
+    tracker.add(r.size());
+  });
+  for (std::size_t i = 0; i < n; ++i) out.offsets[i + 1] += out.offsets[i];
+  // Pass 2: every chunk is copied to its rays' place.
+  out.hits.resize(out.offsets[n]);
+  tbb::parallel_for_each(workers.begin(), workers.end(), [&](const Worker& w) {
+    for (const Chunk& c : w.chunks) {
+      const auto from = w.hits.begin() + std::ptrdiff_t(c.first_hit);
+      std::copy(from, from + std::ptrdiff_t(out.offsets[c.end_ray] - out.offsets[c.first_ray]),
+                out.hits.begin() + std::ptrdiff_t(out.offsets[c.first_ray]));
+    }
+  });
+  return !tracker.stopped();
 }
 
 }  // namespace pierce

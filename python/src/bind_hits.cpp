@@ -57,27 +57,25 @@ void bind_hits(pyb::module_& m) {
         if (rays.size() > std::numeric_limits<std::uint32_t>::max())
           throw pyb::value_error("trace: at most 2^32-1 rays per call");
 
-        std::vector<std::vector<Hit>> hits;
+        HitBatch hits;
         PyScene::Use use(s);
         run_with_progress(progress, cancel, rays.size(), [&](ProgressState& st) {
           const Accel& accel = s.accel();
           trace_batch(accel, kind, rays, max_hits, hits, opts, [&](std::size_t done, std::size_t) { return st.report(done); });
         });
 
-        std::size_t total = 0;
-        for (const auto& h : hits) total += h.size();
-        pyb::array_t<HitRecord> out(static_cast<pyb::ssize_t>(total));
+        pyb::array_t<HitRecord> out(static_cast<pyb::ssize_t>(hits.hits.size()));
         pyb::array_t<std::int64_t> offsets(static_cast<pyb::ssize_t>(rays.size() + 1));
         HitRecord* rec = out.mutable_data();
         std::int64_t* off = offsets.mutable_data();
-        std::size_t k = 0;
-        for (std::size_t i = 0; i < hits.size(); ++i) {
-          off[i] = static_cast<std::int64_t>(k);
-          for (const Hit& h : hits[i])
-            rec[k++] = HitRecord{static_cast<std::uint32_t>(i), h.t, h.geom, h.prim, h.u, h.v,
-                                 {h.ng.x, h.ng.y, h.ng.z}, h.enter};
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+          off[i] = static_cast<std::int64_t>(hits.offsets[i]);
+          for (std::size_t k = hits.offsets[i]; k < hits.offsets[i + 1]; ++k) {
+            const Hit& h = hits.hits[k];
+            rec[k] = HitRecord{static_cast<std::uint32_t>(i), h.t, h.geom, h.prim, h.u, h.v, {h.ng.x, h.ng.y, h.ng.z}, h.enter};
+          }
         }
-        off[rays.size()] = static_cast<std::int64_t>(k);
+        off[rays.size()] = static_cast<std::int64_t>(hits.hits.size());
         return pyb::make_tuple(out, offsets);
       },
       pyb::arg("scene"), pyb::arg("origins"), pyb::arg("directions"), pyb::kw_only(), pyb::arg("tmin") = 0.0,

@@ -120,9 +120,9 @@ TEST(RayGrid, EveryRayCrossesEveryPlateTwice) {
   const Scene scene = plates_scene();
   const Accel accel(scene);
   const auto rays = load_rays("grid:axis=z,n=16", scene);
-  std::vector<std::vector<Hit>> hits;
+  HitBatch hits;
   ASSERT_TRUE(trace_batch(accel, KernelKind::restart, rays, 0, hits));
-  for (std::size_t i = 0; i < rays.size(); ++i) EXPECT_EQ(hits[i].size(), 2 * scene.geometries().size()) << "ray " << i;
+  for (std::size_t i = 0; i < rays.size(); ++i) EXPECT_EQ(hits.of(i).size(), 2 * scene.geometries().size()) << "ray " << i;
 }
 
 TEST(RayRandom, DeterministicOnTheSphereAndAimedInside) {

@@ -132,7 +132,7 @@ TEST(Resume, BatchEqualsSerialAndIsDeterministic) {
       std::vector<std::vector<Hit>> serial;
       for (const Ray& r : f.rays) serial.push_back(kernel_hits(it, r, max_hits));
       std::atomic<std::size_t> last_done{0};
-      std::vector<std::vector<Hit>> batch, again;
+      HitBatch batch, again;
       ASSERT_TRUE(trace_batch(f.world->accel, k, f.rays, max_hits, batch, {}, [&](std::size_t done, std::size_t) {
         std::size_t prev = last_done.load();
         while (done > prev && !last_done.compare_exchange_weak(prev, done)) {
@@ -141,13 +141,13 @@ TEST(Resume, BatchEqualsSerialAndIsDeterministic) {
       }));
       ASSERT_TRUE(trace_batch(f.world->accel, k, f.rays, max_hits, again));
       EXPECT_EQ(last_done.load(), f.rays.size());
-      ASSERT_EQ(batch.size(), f.rays.size());
+      ASSERT_EQ(batch.rays(), f.rays.size());
       for (std::size_t i = 0; i < f.rays.size(); ++i) {
-        ASSERT_TRUE(same_hits(serial[i], batch[i])) << "ray " << i;
-        ASSERT_TRUE(same_hits(batch[i], again[i])) << "ray " << i;
+        ASSERT_TRUE(same_hits(serial[i], batch.of(i))) << "ray " << i;
+        ASSERT_TRUE(same_hits(batch.of(i), again.of(i))) << "ray " << i;
         if (is_exact(k)) {
           const std::size_t n = max_hits ? std::min(max_hits, f.want[i].size()) : f.want[i].size();
-          ASSERT_TRUE(same_hits({f.want[i].begin(), f.want[i].begin() + std::ptrdiff_t(n)}, batch[i])) << "ray " << i;
+          ASSERT_TRUE(same_hits({f.want[i].begin(), f.want[i].begin() + std::ptrdiff_t(n)}, batch.of(i))) << "ray " << i;
         }
       }
     }
@@ -161,14 +161,14 @@ TEST(Resume, BatchCancel) {
   std::mt19937_64 rng(8);
   std::uniform_real_distribution<double> U(0.05, 0.95);
   for (int i = 0; i < 100000; ++i) rays.push_back({{U(rng), U(rng), -1.0}, {0, 0, 1}});
-  std::vector<std::vector<Hit>> out;
+  HitBatch out;
   EXPECT_FALSE(trace_batch(w->accel, KernelKind::filter, rays, 0, out, {}, [](std::size_t, std::size_t) { return false; }));
-  ASSERT_EQ(out.size(), rays.size());
+  ASSERT_EQ(out.rays(), rays.size());
   std::size_t traced = 0;
-  for (std::size_t i = 0; i < out.size(); ++i)
-    if (!out[i].empty()) {
+  for (std::size_t i = 0; i < out.rays(); ++i)
+    if (!out.of(i).empty()) {
       ++traced;
-      ASSERT_TRUE(same_hits(reference_hits(w->scene, rays[i], {}), out[i])) << "ray " << i;  // complete
+      ASSERT_TRUE(same_hits(reference_hits(w->scene, rays[i], {}), out.of(i))) << "ray " << i;  // complete
     }
   EXPECT_GT(traced, 0u);
   EXPECT_LT(traced, rays.size()) << "cancel must stop the batch early";

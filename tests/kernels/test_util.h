@@ -8,6 +8,7 @@
 #include <cmath>
 #include <memory>
 #include <random>
+#include <span>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -95,7 +96,7 @@ inline bool identical(const Hit& a, const Hit& b) {
 }
 
 // Same length, same hits in the same order (t, geom, prim, enter, barycentrics, normal).
-inline ::testing::AssertionResult same_hits(const std::vector<Hit>& want, const std::vector<Hit>& got) {
+inline ::testing::AssertionResult same_hits(std::span<const Hit> want, std::span<const Hit> got) {
   const std::size_t n = std::min(want.size(), got.size());
   for (std::size_t i = 0; i < n; ++i)
     if (!identical(want[i], got[i]))

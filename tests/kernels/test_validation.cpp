@@ -82,9 +82,11 @@ TEST(Validation, EmptyScenesGiveNoHits) {
         EXPECT_TRUE(kernel_hits(it, r).empty()) << kernel_name(k);
         EXPECT_TRUE(kernel_hits(it, r, 3).empty()) << kernel_name(k);
       }
-      std::vector<std::vector<Hit>> out;
-      EXPECT_TRUE(trace_batch(w->accel, k, assorted_rays(), 0, out));
-      for (const auto& h : out) EXPECT_TRUE(h.empty());
+      HitBatch out;
+      const std::vector<Ray> rays = assorted_rays();
+      EXPECT_TRUE(trace_batch(w->accel, k, rays, 0, out));
+      EXPECT_EQ(out.rays(), rays.size());
+      EXPECT_TRUE(out.hits.empty());
     }
   }
 }

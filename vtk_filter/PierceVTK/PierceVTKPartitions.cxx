@@ -134,7 +134,7 @@ bool ClassifyRays(const pierce::Scene& scene, const std::vector<pierce::Ray>& ra
   pierce::PartitionBuilder builder(scene.geometries().size());
   pierce::RayPartitions parts;
   std::vector<pierce::Ray> lines;
-  std::vector<std::vector<pierce::Hit>> hits;
+  pierce::HitBatch hits;
   for (std::size_t begin = 0; begin < rays.size(); begin += kChunk) {
     const std::size_t end = std::min(rays.size(), begin + kChunk);
     lines.clear();
@@ -143,7 +143,7 @@ bool ClassifyRays(const pierce::Scene& scene, const std::vector<pierce::Ray>& ra
                                                [&](std::size_t done, std::size_t) { return progress.Report(begin + done, rays.size()); });
     if (!completed || progress.CheckAbort()) return false;
     for (std::size_t i = begin; i < end; ++i) {
-      builder.build(hits[i - begin], parts);
+      builder.build(hits.of(i - begin), parts);
       clip_partitions(parts, rays[i].tmin, rays[i].tmax);
       if (parts.unmatched_leaves > 0 || parts.unclosed > 0) ++out.inconsistent_rays;
       const auto offset = static_cast<std::uint32_t>(out.solids.size());

@@ -3,11 +3,13 @@
 // Every exact kernel returns exactly the same hits in the same total order (kernel_kind.h lists
 // them and says which are exact).
 #include <memory>
+#include <span>
 #include <string>
 #include <variant>
 #include <vector>
 
 #include "pierce/embree_limits.h"
+#include "pierce/hit_batch.h"
 #include "pierce/kernel_kind.h"
 #include "pierce/kernel_options.h"
 #include "pierce/kernels/all_hits.h"
@@ -119,12 +121,12 @@ class HitIterator {
 // All hits of one ray (up to max_hits, 0 = all) appended to `out`.
 void collect_hits(HitIterator& it, const Ray& ray, std::size_t max_hits, std::vector<Hit>& out);
 
-// Runs many rays on all cores (parallel_for_items). result[i] holds ray i's hits, identical
-// whatever the thread count. `progress(done, total)` is called from worker threads with the
-// number of rays finished so far; returning false cancels (remaining rays keep empty results)
-// and the function returns false.
-bool trace_batch(const Accel& accel, KernelKind kind, const std::vector<Ray>& rays, std::size_t max_hits,
-                 std::vector<std::vector<Hit>>& result, const KernelOptions& opts = {},
-                 const Progress& progress = {});
+// Runs many rays on all cores; every ray's hits (up to max_hits, 0 = all) go into one HitBatch,
+// identical whatever the thread count. Each thread appends to its own buffer, and the buffers are
+// merged once: nothing is allocated per ray. `progress(done, total)` is called from worker
+// threads with the number of rays finished so far; returning false cancels (the rays not traced
+// get no hits) and the function returns false.
+bool trace_batch(const Accel& accel, KernelKind kind, std::span<const Ray> rays, std::size_t max_hits,
+                 HitBatch& out, const KernelOptions& opts = {}, const Progress& progress = {});
 
 }  // namespace pierce

@@ -7,13 +7,12 @@
 
 namespace pierce {
 
-// C: the counter policy (counters.h).
 template <typename T, class C = NoCounters>
 class AllHitsKernel : public WideKernel<T, C> {
   using Base = WideKernel<T, C>;
 
  public:
-  explicit AllHitsKernel(const WideBvh<T>& bvh, HitOrder order = {}) : Base(bvh, order) {}
+  using Base::Base;
 
   void begin(const Ray& ray, std::size_t max_hits = 0) { begin_into(ray, max_hits, hits_); }
 

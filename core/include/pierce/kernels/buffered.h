@@ -14,13 +14,12 @@
 
 namespace pierce {
 
-// C: the counter policy (counters.h).
 template <typename T, class C = NoCounters, std::size_t Capacity = 16>
 class BufferedKernel : public WideKernel<T, C> {
   using Base = WideKernel<T, C>;
 
  public:
-  explicit BufferedKernel(const WideBvh<T>& bvh, HitOrder order = {}) : Base(bvh, order) {}
+  using Base::Base;
 
   void begin(const Ray& ray, std::size_t /*max_hits*/ = 0) {
     this->prepare(ray);

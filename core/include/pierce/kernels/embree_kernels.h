@@ -45,20 +45,25 @@ class EmbreeExactBase {
   Counters counters;  // kept only when constructed with count = true
 };
 
-class EmbreeRestartKernel : public EmbreeExactBase {
+// The constructors of the exact Embree kernels: the query mode is the kernel's.
+template <EmbreeQuery::Mode M>
+class EmbreeExactKernel : public EmbreeExactBase {
  public:
-  explicit EmbreeRestartKernel(const EmbreeAccel& acc, HitOrder order = {}, bool count = false)
-      : EmbreeExactBase(acc, order, EmbreeQuery::Mode::restart, count) {}
-  EmbreeRestartKernel(const EmbreeAccel& acc, const KernelOptions& o) : EmbreeRestartKernel(acc, o.order, o.count) {}
+  explicit EmbreeExactKernel(const EmbreeAccel& acc, HitOrder order = {}, bool count = false)
+      : EmbreeExactBase(acc, order, M, count) {}
+  EmbreeExactKernel(const EmbreeAccel& acc, const KernelOptions& o) : EmbreeExactKernel(acc, o.order, o.count) {}
+};
+
+class EmbreeRestartKernel : public EmbreeExactKernel<EmbreeQuery::Mode::restart> {
+ public:
+  using EmbreeExactKernel::EmbreeExactKernel;
   void begin(const Ray& ray, std::size_t max_hits = 0);
   bool next(Hit& out);
 };
 
-class EmbreeFilterKernel : public EmbreeExactBase {
+class EmbreeFilterKernel : public EmbreeExactKernel<EmbreeQuery::Mode::all> {
  public:
-  explicit EmbreeFilterKernel(const EmbreeAccel& acc, HitOrder order = {}, bool count = false)
-      : EmbreeExactBase(acc, order, EmbreeQuery::Mode::all, count) {}
-  EmbreeFilterKernel(const EmbreeAccel& acc, const KernelOptions& o) : EmbreeFilterKernel(acc, o.order, o.count) {}
+  using EmbreeExactKernel::EmbreeExactKernel;
   void begin(const Ray& ray, std::size_t max_hits = 0);
   bool next(Hit& out);
 
@@ -67,11 +72,9 @@ class EmbreeFilterKernel : public EmbreeExactBase {
   std::size_t pos_ = 0;
 };
 
-class EmbreeNodeCullKernel : public EmbreeExactBase {
+class EmbreeNodeCullKernel : public EmbreeExactKernel<EmbreeQuery::Mode::closest_n> {
  public:
-  explicit EmbreeNodeCullKernel(const EmbreeAccel& acc, HitOrder order = {}, bool count = false)
-      : EmbreeExactBase(acc, order, EmbreeQuery::Mode::closest_n, count) {}
-  EmbreeNodeCullKernel(const EmbreeAccel& acc, const KernelOptions& o) : EmbreeNodeCullKernel(acc, o.order, o.count) {}
+  using EmbreeExactKernel::EmbreeExactKernel;
   void begin(const Ray& ray, std::size_t max_hits = 0);
   bool next(Hit& out);
 

@@ -11,13 +11,12 @@
 
 namespace pierce {
 
-// C: the counter policy (counters.h).
 template <typename T, class C = NoCounters>
 class NodeCullKernel : public WideKernel<T, C> {
   using Base = WideKernel<T, C>;
 
  public:
-  explicit NodeCullKernel(const WideBvh<T>& bvh, HitOrder order = {}) : Base(bvh, order) {}
+  using Base::Base;
 
   void begin(const Ray& ray, std::size_t max_hits = 0) {
     this->prepare(ray);

@@ -119,7 +119,6 @@ class QueueScheduler {
   float deferred_per_step_ = 1.0f;   // adaptive: starts near to far
 };
 
-// C: the counter policy (counters.h).
 template <typename T, class C = NoCounters>
 class QueueKernel : public WideKernel<T, C> {
   using Base = WideKernel<T, C>;

@@ -51,10 +51,12 @@ class WideKernel {
  public:
   C counters;
 
- protected:
-  WideKernel(const WideBvh<T>& bvh, HitOrder order) : bvh_(&bvh), order_(order), simd_(simd_level()) {
+  // Every own-BVH kernel is constructed so (the kernels inherit it).
+  explicit WideKernel(const WideBvh<T>& bvh, HitOrder order = {}) : bvh_(&bvh), order_(order), simd_(simd_level()) {
     pending_.reserve(bvh.stack_capacity());
   }
+
+ protected:
 
   // The ray's TraversalRay and, at a SIMD level, its SimdRay: once per ray, however many
   // traversals it takes (restart's, queue's and buffered's later passes reuse them).
