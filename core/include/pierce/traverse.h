@@ -29,8 +29,8 @@
 #include "pierce/counters.h"
 #include "pierce/node_stack.h"
 #include "pierce/prefetch_mode.h"
+#include "pierce/simd/level_ops.h"
 #include "pierce/simd/simd_level.h"
-#include "pierce/simd/wide_ops.h"
 #include "pierce/wide_bvh.h"
 
 namespace pierce {
