@@ -15,7 +15,7 @@ namespace pierce {
 struct BvhBuildOptions {
   int max_leaf_size = 8;  // the binary BVH's leaves
   // The wide BVH's leaves: up to two 8-lane blocks. Against one block, the 1.64 M-triangle shell
-  // has 50 104 nodes instead of 84 689 (docs/BENCHMARKS.md).
+  // has 50 104 nodes instead of 84 689 (`pierce_bench_kernels --scene shell` prints the count).
   int wide_max_leaf_size = 16;
   float traversal_cost = 1.0f;  // relative to one 8-lane block test
   // The SAH's areas in float where every coordinate is below 2^59 (they stay finite there): the
