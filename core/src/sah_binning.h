@@ -1,8 +1,9 @@
 #pragma once
-// The binned SAH step of the wide BVH's builder (wide_bvh_builder.cpp), on float boxes: bin a
-// range of primitive references by centroid into up to 32 bins per axis, choose the cheapest plane
-// (leaf cost counted per 8-lane block), and partition the range in place. The boxes only choose
-// the partition; the writer recomputes every box exactly in the BVH's precision.
+// The binned SAH step (Wald 2007) of Pierce's BVH builder (binned_builder.h), for every tree it
+// builds, binary or 8-wide: bin a range of primitive references by centroid, choose the cheapest
+// plane, and partition the range in place. Boxes are float, rounded outward; they only choose the
+// partition (the writers recompute every box exactly in the BVH's precision). Areas are computed in
+// a precision `Area`: float, or double where float areas could overflow (kMaxFloatAreaCoord).
 //
 // Vectors are GCC/Clang vector extensions (4 floats: x, y, z and a lane that carries an id), so the
 // code is the same on every target and compiles to SSE on any x86-64, without run-time dispatch.
@@ -14,7 +15,26 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
+#include "pierce/wide_bvh.h"
+
 namespace pierce::detail {
+
+// ------------------------------------------------------------------ the knobs, for every tree
+// Bins per axis at most; a range of n references gets 4 + n / 20 of them (fewer for small ranges,
+// where more bins cost more than they find).
+inline constexpr int kMaxBins = 32;
+// A leaf's cost is counted in 8-lane blocks: a block tests its eight triangles at once, so a leaf
+// of up to eight costs one test whatever the tree's branching.
+inline constexpr std::uint32_t kCostLanes = kBlockLanes;
+// Ranges of at least this many references are binned in parallel (the top of the tree, where
+// there are not yet subtrees enough to keep the threads busy). Bins merge by min, max and sums, so
+// the result is the same for any split of the work.
+inline constexpr std::uint32_t kParallelBinning = 1u << 16;
+// Ranges of at least this many references build their children in parallel.
+inline constexpr std::uint32_t kParallelBuild = 1024;
+// Float areas while every coordinate is below this: a half-area then stays below 3 * 2^120 and a
+// centroid sum finite. Beyond it areas are computed in double.
+inline constexpr double kMaxFloatAreaCoord = 0x1p59;
 
 using Float4 = float __attribute__((vector_size(16)));
 using Int4 = std::int32_t __attribute__((vector_size(16)));
@@ -34,6 +54,12 @@ struct PrimRef {
     std::memcpy(&u, &f, sizeof u);
     return u;
   }
+  // An id as the bits of a lane.
+  static float id_lane(std::uint32_t id) {
+    float f;
+    std::memcpy(&f, &id, sizeof f);
+    return f;
+  }
   // Twice the centroid, with the id lane zeroed (never a denormal in arithmetic).
   Float4 centroid2() const {
     const Int4 xyz = {-1, -1, -1, 0};
@@ -48,9 +74,10 @@ struct Box4 {
   void extend(Float4 l, Float4 h) { lo = min4(lo, l), hi = max4(hi, h); }
   void extend(Float4 p) { extend(p, p); }
   void extend(const Box4& b) { extend(b.lo, b.hi); }
-  float half_area() const {
+  template <typename Area>
+  Area half_area() const {
     const Float4 d = hi - lo;
-    return d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
+    return Area(d[0]) * Area(d[1]) + Area(d[1]) * Area(d[2]) + Area(d[2]) * Area(d[0]);
   }
 };
 
@@ -61,13 +88,12 @@ struct PrimRange {
   std::uint32_t size() const { return end - begin; }
 };
 
-// Leaf cost in 8-lane blocks: a block tests its eight lanes at once.
-inline double blocks_of(std::uint32_t n) { return double((n + 7) >> 3); }
+// A leaf's cost: the blocks its n triangles fill (kCostLanes).
+inline double blocks_of(std::uint32_t n) { return double((n + kCostLanes - 1) / kCostLanes); }
 
-// Centroid to bin: fewer bins for small ranges (4 + n / 20, at most kMaxBins); an axis along
-// which the centroids do not spread gets scale 0 (every centroid in bin 0: no plane).
+// Centroid to bin (kMaxBins); an axis along which the centroids do not spread gets scale 0 (every
+// centroid in bin 0: no plane).
 struct BinMapping {
-  static constexpr int kMaxBins = 32;
   int bins = 0;
   Float4 offset{}, scale{}, last{};
   BinMapping(std::uint32_t n, const Box4& cent) {
@@ -89,16 +115,17 @@ struct BinMapping {
 
 // A plane: primitives whose centroid bin along `axis` is below `bin` go left.
 struct SahSplit {
-  // Sum of area x blocks over both sides, in double: with coordinates up to 2^59 a float area
-  // times a block count could overflow.
+  // Sum of area x blocks over both sides, in double: a float area times a block count could
+  // overflow.
   double cost = std::numeric_limits<double>::infinity();
   int axis = -1, bin = 0;
   bool valid() const { return axis >= 0; }
 };
 
+template <typename Area>
 struct Bins {
-  Box4 box[3][BinMapping::kMaxBins];
-  std::uint32_t count[3][BinMapping::kMaxBins] = {};
+  Box4 box[3][kMaxBins];
+  std::uint32_t count[3][kMaxBins] = {};
 
   void add(const PrimRef* prims, std::uint32_t begin, std::uint32_t end, const BinMapping& m) {
     for (std::uint32_t i = begin; i < end; ++i) {
@@ -125,15 +152,15 @@ struct Bins {
     SahSplit s;
     for (int a = 0; a < 3; ++a) {
       if (m.scale[a] == 0.0f) continue;
-      double right_cost[BinMapping::kMaxBins];
-      std::uint32_t right_count[BinMapping::kMaxBins];
+      double right_cost[kMaxBins];
+      std::uint32_t right_count[kMaxBins];
       Box4 acc;
       std::uint32_t n = 0;
       for (int k = m.bins - 1; k > 0; --k) {
         acc.extend(box[a][k]);
         n += count[a][k];
         right_count[k] = n;
-        right_cost[k] = n > 0 ? double(acc.half_area()) * blocks_of(n) : 0.0;
+        right_cost[k] = n > 0 ? double(acc.half_area<Area>()) * blocks_of(n) : 0.0;
       }
       acc = Box4{};
       n = 0;
@@ -141,7 +168,7 @@ struct Bins {
         acc.extend(box[a][k - 1]);
         n += count[a][k - 1];
         if (n == 0 || right_count[k] == 0) continue;
-        const double cost = double(acc.half_area()) * blocks_of(n) + right_cost[k];
+        const double cost = double(acc.half_area<Area>()) * blocks_of(n) + right_cost[k];
         if (cost < s.cost) s.cost = cost, s.axis = a, s.bin = k;
       }
     }
@@ -149,25 +176,21 @@ struct Bins {
   }
 };
 
-// Ranges of at least this many references are binned in parallel (the top of the tree, where
-// there are not yet subtrees enough to keep the threads busy). Bins merge by min, max and sums, so
-// the result is the same for any split of the work.
-inline constexpr std::uint32_t kParallelBinning = 1u << 16;
-
-inline SahSplit find_split(const PrimRef* prims, const PrimRange& r) {
+template <typename Area>
+SahSplit find_split(const PrimRef* prims, const PrimRange& r) {
   const BinMapping m(r.size(), r.cent);
   if (r.size() < kParallelBinning) {
-    Bins bins;
+    Bins<Area> bins;
     bins.add(prims, r.begin, r.end, m);
     return bins.best(m);
   }
-  const Bins bins = tbb::parallel_reduce(
-      tbb::blocked_range<std::uint32_t>(r.begin, r.end, kParallelBinning / 4), Bins{},
-      [&](const tbb::blocked_range<std::uint32_t>& chunk, Bins b) {
+  const Bins<Area> bins = tbb::parallel_reduce(
+      tbb::blocked_range<std::uint32_t>(r.begin, r.end, kParallelBinning / 4), Bins<Area>{},
+      [&](const tbb::blocked_range<std::uint32_t>& chunk, Bins<Area> b) {
         b.add(prims, chunk.begin(), chunk.end(), m);
         return b;
       },
-      [&](Bins a, const Bins& b) {
+      [&](Bins<Area> a, const Bins<Area>& b) {
         a.merge(b, m.bins);
         return a;
       });

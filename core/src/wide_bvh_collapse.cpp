@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <array>
 
+#include "pierce/bvh_builder.h"
 #include "pierce/wide_bvh.h"
 #include "wide_bvh_writer.h"
 

@@ -7,7 +7,7 @@
 #include <tuple>
 
 #include "pierce/analysis/bvh_query.h"
-#include "pierce/wide_bvh.h"
+#include "pierce/bvh_builder.h"
 #include "pierce/scene.h"
 
 namespace pierce::test {
@@ -41,7 +41,7 @@ TEST(ClosestPoint, EquallyNearTrianglesGiveTheLowestPrim) {
   NodeStack<double> stack;
   for (const bool embree_builder : {true, false}) {
     BvhBuildOptions opts;
-    opts.embree_builder = embree_builder;
+    opts.float_areas = embree_builder;
     opts.max_leaf_size = 2;
     const WideBvhd bvh = build_wide_bvh<double>(scene, opts);
     for (const Vec3d& q : queries) {

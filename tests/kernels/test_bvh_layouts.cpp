@@ -242,7 +242,7 @@ TEST(BvhLayouts, EmbreeAndOwnBuilders) {
   for (const bool embree : {true, false}) {
     SCOPED_TRACE(embree ? "Embree's builder" : "own builder");
     BvhBuildOptions opts;
-    opts.embree_builder = embree;
+    opts.float_areas = embree;
     const Bvhf bvh = build_bvh<float>(scene, opts);
     ASSERT_FALSE(bvh.nodes.empty());
     for (const BvhNode<float>& n : bvh.nodes) {  // every box is exactly the union of what is below it
@@ -321,7 +321,7 @@ TEST(BvhLayouts, DirectWideBuild) {
       SCOPED_TRACE(testing::Message() << (binned ? "binned builder" : "binary builder collapsed") << ", max_leaf_size "
                                       << max_leaf);
       BvhBuildOptions opts;
-      opts.embree_builder = binned;
+      opts.float_areas = binned;
       opts.max_leaf_size = opts.wide_max_leaf_size = max_leaf;
       check_direct_build(scene, ex, opts);
     }

@@ -34,13 +34,12 @@ void set_prefetch_mode(PrefetchMode mode);
 
 // The automatic choice for a BVH of `bvh_bytes` (WideBvh::memory_bytes): prefetch beyond 16 MiB
 // depth first, beyond 8 MiB breadth first (`any_order`: the node processed next is the one asked
-// for longest ago, so more of each prefetch's latency is hidden and it pays on smaller BVHs). In
-// `pierce_bench_kernels --prefetch always,never` (docs/BENCHMARKS-HISTORY.md, nineteenth session) the
-// prefetch cost up to 8 % on CGAL's meshes and blob (up to 5.2 MiB) and up to 22 % on hairball
-// (6.3 MiB); it paid up to 35 % on blob at 7 and 8 subdivisions (19.6 and 79.7 MiB,
-// `--blob-subdivisions`) and on the shell (99.7 MiB). Where between 6.3 and 19.6 MiB it starts to
-// pay depth first was not measured. The numbers are this machine's (Zen 4, 1 MB L2); in a VM the
-// cache sizes cannot be read reliably at run time.
+// for longest ago, so more of each prefetch's latency is hidden and it pays on smaller BVHs).
+// `pierce_bench_kernels --prefetch always,never` on a Zen 4 (1 MB L2) shows the prefetch costing up
+// to 8 % on CGAL's meshes and blob (up to 5.2 MiB) and up to 22 % on hairball (6.3 MiB), and paying
+// up to 35 % on blob at 7 and 8 subdivisions (19.6 and 79.7 MiB, `--blob-subdivisions`) and on the
+// shell (99.7 MiB); depth first, the bound lies somewhere between 6.3 and 19.6 MiB. Fixed sizes
+// rather than the cache sizes: a VM cannot report those reliably at run time.
 inline bool prefetches_by_size(std::size_t bvh_bytes, bool any_order) {
   constexpr std::size_t kMiB = std::size_t(1) << 20;
   return bvh_bytes > (any_order ? 8 : 16) * kMiB;

@@ -47,9 +47,8 @@ struct TraversalRay {
     return tr;
   }
 
-  // make(), in place: a kernel prepares its ray member without building a copy on the stack (that
-  // copy, in wide loads over the fields just written in narrow stores, stalled on store forwarding:
-  // a fifth of the per-ray code's samples in perf before this).
+  // make(), in place: a kernel prepares its ray member without building a copy on the stack, whose
+  // wide loads over the fields just written in narrow stores would stall on store forwarding.
   void assign(const Ray& r, double scene_max_abs) {
     TraversalRay& tr = *this;
     T d[3], inv[3];
@@ -109,8 +108,9 @@ template <typename T>
 void prepare_axes(const Ray& r, TraversalRay<T>& tr, T d[3], T inv[3], bool& finite) {
 #if defined(__SSE2__)
   if constexpr (std::is_same_v<T, float>) {
-    // The same conversions, divisions and tests, four lanes at a time (lane 3 is padding). In
-    // callgrind (blob, first hit) make() fell from 202 to 181 instructions per ray.
+    // The same conversions, divisions and tests as the scalar loop below, four lanes at a time
+    // (lane 3 is padding), in fewer instructions per ray: 181 against 202 in callgrind on
+    // `pierce_bench_kernels --scene blob --columns 1`.
     const auto load = [](const Vec3d& v) {
       return _mm_movelh_ps(_mm_cvtpd_ps(_mm_loadu_pd(&v.x)), _mm_cvtpd_ps(_mm_load_sd(&v.z)));
     };

@@ -29,8 +29,8 @@
 #include "pierce/counters.h"
 #include "pierce/node_stack.h"
 #include "pierce/prefetch_mode.h"
+#include "pierce/simd/level_ops.h"
 #include "pierce/simd/simd_level.h"
-#include "pierce/simd/wide_ops.h"
 #include "pierce/wide_bvh.h"
 
 namespace pierce {
@@ -304,8 +304,8 @@ inline bool traverse_with(const Ops& ops, const WideBvh<T>& bvh, const Query& qu
       if constexpr (Policy::kAnyOrder) {
         // Breadth first (FifoCursor): every child that passes joins the queue's tail in slot order,
         // unranked, prefetched, and the node processed next is the oldest pending one. No branch
-        // on how many passed: breadth first that count is unpredictable, and guessing it cost
-        // about a tenth of `filter`'s time (docs/BENCHMARKS-HISTORY.md, twenty-second session).
+        // on how many passed: breadth first that count is unpredictable, and a branch guessing it
+        // costs about a tenth of `filter`'s time (`pierce_bench_kernels --kernels filter`).
         pending.ensure_room();
         const std::uint32_t slots = ops.push_all(node, p.lo(), p.hi(), pending.top());
         if (prefetch) detail_prefetch(nodes, blocks, slots, node.child);

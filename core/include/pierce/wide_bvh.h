@@ -7,13 +7,12 @@
 //
 // Every box is the exact union (min and max in T, no rounding) of the triangles below it, so a
 // child's box lies inside its parent's and "triangle hit => every enclosing box hit" holds.
+// The layout only: the builders are declared in bvh_builder.h.
 #include <cstdint>
 #include <limits>
 #include <vector>
 
 #include "pierce/bbox.h"
-#include "pierce/bvh.h"
-#include "pierce/bvh_builder.h"
 #include "pierce/hit.h"
 #include "pierce/huge_page_allocator.h"
 #include "pierce/triangle.h"
@@ -105,22 +104,5 @@ struct WideBvh {
 
 using WideBvhf = WideBvh<float>;
 using WideBvhd = WideBvh<double>;
-
-// The wide BVH of the scene's non-degenerate triangles (degenerate in T: never hit), built
-// directly 8-wide by a TBB-parallel binned SAH builder on float boxes (wide_bvh_builder.cpp); where
-// float boxes cannot be used (coordinates beyond kEmbreeMaxCoord, or opts.embree_builder off),
-// Pierce's binary SAH build in precision T collapsed to eight wide.
-template <typename T>
-WideBvh<T> build_wide_bvh(const Scene& scene, const BvhBuildOptions& opts = {});
-
-// Collapses a binary BVH: each wide node takes the binary children with the largest surface area
-// apart until it holds eight; a subtree of at most eight triangles becomes one leaf block.
-template <typename T>
-WideBvh<T> build_wide_bvh(const Bvh<T>& binary);
-
-extern template WideBvh<float> build_wide_bvh<float>(const Scene&, const BvhBuildOptions&);
-extern template WideBvh<double> build_wide_bvh<double>(const Scene&, const BvhBuildOptions&);
-extern template WideBvh<float> build_wide_bvh<float>(const Bvh<float>&);
-extern template WideBvh<double> build_wide_bvh<double>(const Bvh<double>&);
 
 }  // namespace pierce

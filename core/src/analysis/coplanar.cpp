@@ -9,7 +9,7 @@
 #include "pierce/analysis/bvh_query.h"
 #include "pierce/exact_predicates.h"
 #include "pierce/analysis/polygon2d.h"
-#include "pierce/wide_bvh.h"
+#include "pierce/bvh_builder.h"
 #include "pierce/parallel_for_items.h"
 
 namespace pierce::analysis {

@@ -8,7 +8,7 @@
 
 #include "pierce/analysis/bvh_query.h"
 #include "pierce/analysis/mesh_topology.h"
-#include "pierce/wide_bvh.h"
+#include "pierce/bvh_builder.h"
 #include "pierce/huge_page_allocator.h"
 #include "pierce/parallel_for_items.h"
 #include "thickness_internal.h"

@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "pierce/analysis/bvh_query.h"
-#include "pierce/wide_bvh.h"
+#include "pierce/bvh_builder.h"
 #include "pierce/parallel_for_items.h"
 #include "thickness_internal.h"
 

@@ -29,7 +29,7 @@
 
 #include "cad_faces.h"
 #include "pierce/analysis/bvh_query.h"
-#include "pierce/wide_bvh.h"
+#include "pierce/bvh_builder.h"
 #include "pierce/slab.h"
 
 namespace pierce {
