@@ -39,9 +39,9 @@ TEST(ClosestPoint, EquallyNearTrianglesGiveTheLowestPrim) {
   scene.add_mesh(v, tris);
   const Vec3d queries[] = {{0.25, 0.25, 1.0}, {0.5, 0.5, 0.0}, {-1.0, -1.0, 0.5}, {2.0, 0.0, -0.5}, {0.3, 0.1, 0.0}};
   NodeStack<double> stack;
-  for (const bool embree_builder : {true, false}) {
+  for (const bool float_areas : {true, false}) {
     BvhBuildOptions opts;
-    opts.float_areas = embree_builder;
+    opts.float_areas = float_areas;
     opts.max_leaf_size = 2;
     const WideBvhd bvh = build_wide_bvh<double>(scene, opts);
     for (const Vec3d& q : queries) {

@@ -226,8 +226,8 @@ TEST(BvhLayouts, BufferedReleaseAfterOverflow) {
 namespace pierce::test {
 namespace {
 
-// Both binary builders (Embree's rtcBuildBVH and Pierce's own SAH, which takes over beyond Embree's
-// coordinate range) give trees every kernel is exact on, with boxes that are exact unions.
+// The binned SAH builder, with float areas (scenes within Embree's coordinate range) and with
+// double areas (beyond it), gives trees every kernel is exact on, with boxes that are exact unions.
 // Plates, duplicated faces and a random soup: the builders' test scene.
 Scene builder_scene() {
   auto meshes = gen::stacked_plates(12);
@@ -236,13 +236,13 @@ Scene builder_scene() {
   return gen::to_scene(meshes);
 }
 
-TEST(BvhLayouts, EmbreeAndOwnBuilders) {
+TEST(BvhLayouts, FloatAndDoubleAreaBuilds) {
   const Scene scene = builder_scene();
   const Expected ex(scene, random_rays(scene.bounds(), 60, 8));
-  for (const bool embree : {true, false}) {
-    SCOPED_TRACE(embree ? "Embree's builder" : "own builder");
+  for (const bool float_areas : {true, false}) {
+    SCOPED_TRACE(float_areas ? "float areas" : "double areas");
     BvhBuildOptions opts;
-    opts.float_areas = embree;
+    opts.float_areas = float_areas;
     const Bvhf bvh = build_bvh<float>(scene, opts);
     ASSERT_FALSE(bvh.nodes.empty());
     for (const BvhNode<float>& n : bvh.nodes) {  // every box is exactly the union of what is below it
