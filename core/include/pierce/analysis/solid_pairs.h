@@ -14,7 +14,7 @@
 //    is tessellated), or a ray crossing from one into the other at a shared surface. gap = 0.
 //  - clearance: neither, and the smallest distance between their triangles is below D (strictly):
 //    `gap` is that distance, `point` (on solid_a) and `point_b` (on solid_b) the closest points.
-//    Distances are exact triangle-triangle distances in double precision, candidates pruned with
+//    Distances are triangle-triangle distances computed in double precision, candidates pruned with
 //    box queries on the scene's double BVH (each triangle's box grown by D). Solids meeting only
 //    along an edge or at a point have gap 0 and are reported as clearance when D > 0.
 // Pairs farther apart than D are not reported; D = 0 reports clash and contact only. Fields that do
