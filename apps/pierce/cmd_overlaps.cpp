@@ -1,6 +1,7 @@
 // `pierce overlaps MODEL`: coplanar overlapping faces (exact and within --tol), Gribble et al.'s
-// coplanar-hit statistic, and solid-solid interference along rays, per solid pair; per-triangle
-// heat-map arrays in VTP.
+// coplanar-hit statistic, solid-solid interference along rays, per solid pair, and every pair of
+// solids within --clearance classified as clash, contact or clearance; per-triangle heat-map arrays
+// in VTP.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +20,7 @@
 #include "model_args.h"
 #include "output_file.h"
 #include "pierce/analysis/overlaps.h"
+#include "pierce/analysis/solid_pairs.h"
 #include "pierce/error.h"
 #include "pierce/io/ray_source.h"
 #include "pierce/render/false_colour.h"
@@ -34,6 +36,7 @@ using namespace pierce::analysis;
 struct OverlapsCli {
   ModelArgs model;
   double tol = 0;
+  double clearance = 0;
   std::string rays = "axes:n=128";
   double ray_eps = 1e-5;
   std::string kernel{kernel_name(kDefaultKernel)};
@@ -42,16 +45,25 @@ struct OverlapsCli {
   bool force = false, progress = false;
 };
 
-// `axes:n=N`: N x N parallel rays along each of x, y and z; anything else as `pierce hits --rays`.
-std::vector<Ray> make_rays(const std::string& spec, const Scene& scene) {
+// N of `axes:n=N`, 0 for a spec not starting with `axes`.
+int axes_grid_n(const std::string& spec) {
   const std::string prefix = "axes:n=";
-  if (spec.rfind("axes", 0) != 0) return load_rays(spec, scene);
+  if (spec.rfind("axes", 0) != 0) return 0;
   char* end = nullptr;
   const long n = spec.rfind(prefix, 0) == 0 ? std::strtol(spec.c_str() + prefix.size(), &end, 10) : 0;
   if (!end || *end != '\0' || n <= 0 || n > 32768)
     throw InputError("--rays '" + spec + "': expected axes:n=N with 0 < N <= 32768");
-  return axis_grid_rays(scene.bounds(), int(n));
+  return int(n);
 }
+
+// `axes:n=N`: N x N parallel rays along each of x, y and z; anything else as `pierce hits --rays`.
+std::vector<Ray> make_rays(const std::string& spec, const Scene& scene) {
+  const int n = axes_grid_n(spec);
+  return n > 0 ? axis_grid_rays(scene.bounds(), n) : load_rays(spec, scene);
+}
+
+// A pair's point as [x, y, z], or null where it does not apply to the pair's kind (NaN).
+nlohmann::ordered_json json_point_or_null(Vec3d p) { return std::isnan(p.x) ? nlohmann::ordered_json() : json_point(p); }
 
 void write_csv(std::FILE* f, const Scene& s, const CoplanarReport& c, const RayOverlapReport& r) {
   std::fputs("kind,solid_a,name_a,solid_b,name_b,count,exact,same_facing,opposite_facing,area,max_depth,penetration,x,y,z\n", f);
@@ -73,7 +85,8 @@ void write_csv(std::FILE* f, const Scene& s, const CoplanarReport& c, const RayO
                  exact_number(p.where.y).c_str(), exact_number(p.where.z).c_str());
 }
 
-void write_json(std::FILE* f, const Scene& s, const OverlapsCli& o, const CoplanarReport& c, const RayOverlapReport& r) {
+void write_json(std::FILE* f, const Scene& s, const OverlapsCli& o, const CoplanarReport& c, const RayOverlapReport& r,
+                const SolidPairReport& sp) {
   nlohmann::ordered_json j;
   j["models"] = o.model.models;
   j["solids"] = nlohmann::ordered_json::array();
@@ -122,10 +135,22 @@ void write_json(std::FILE* f, const Scene& s, const OverlapsCli& o, const Coplan
   for (const Interference& x : r.intervals)
     iv.push_back({{"ray", x.ray}, {"solid_a", x.a}, {"solid_b", x.b}, {"depth", x.depth},
                   {"entry", json_point(x.entry)}, {"exit", json_point(x.exit)}});
+  j["clearance"] = sp.clearance;
+  auto& solid_pairs = j["pairs"] = nlohmann::ordered_json::array();
+  for (const SolidPair& p : sp.pairs)
+    solid_pairs.push_back({{"solid_a", p.solid_a},
+                           {"solid_b", p.solid_b},
+                           {"kind", enum_name(p.kind)},
+                           {"gap", json_or_null(p.gap)},
+                           {"depth", json_or_null(p.depth)},
+                           {"overlap_length", json_or_null(p.overlap_length)},
+                           {"volume", json_or_null(p.volume)},
+                           {"point", json_point_or_null(p.point)},
+                           {"point_b", json_point_or_null(p.point_b)}});
   write_json_document(f, j);
 }
 
-void write_vtp_result(std::FILE* f, const Scene& s, const TriangleOverlapArrays& a) {
+void write_vtp_result(std::FILE* f, const Scene& s, const TriangleOverlapArrays& a, const SolidPairReport& sp) {
   PolyData d;
   for (const Geometry& g : s.geometries()) {
     const auto base = std::uint32_t(d.points.size());
@@ -139,6 +164,7 @@ void write_vtp_result(std::FILE* f, const Scene& s, const TriangleOverlapArrays&
   d.cell_data.emplace_back("CoplanarCount", a.coplanar_count);
   d.cell_data.emplace_back("CoplanarHits", a.coplanar_hits);
   d.cell_data.emplace_back("InterferenceHits", a.interference_hits);
+  d.cell_data.emplace_back("Clearance", sp.triangle_clearance);
   if (!write_vtp(f, d)) throw std::runtime_error("write error");
 }
 
@@ -167,6 +193,32 @@ void print_summary(const Scene& s, const CoplanarReport& c, const RayOverlapRepo
   }
   if (r.rays_ending_inside)
     std::printf("note: %zu rays ended inside a solid (open mesh?): see `pierce info`\n", r.rays_ending_inside);
+}
+
+// One line of counts per kind, then one row per pair ("-" where a field does not apply).
+void print_pairs(const Scene& s, const SolidPairReport& r) {
+  std::size_t count[3] = {0, 0, 0};
+  for (const SolidPair& p : r.pairs) ++count[int(p.kind)];
+  std::printf("pairs within clearance %g: %zu clash, %zu contact, %zu clearance\n", r.clearance, count[0], count[1],
+              count[2]);
+  if (r.pairs.empty()) return;
+  auto num = [](double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.6g", v);
+    return std::isnan(v) ? std::string("-") : std::string(b);
+  };
+  auto point = [](Vec3d p) {
+    char b[96];
+    std::snprintf(b, sizeof b, "(%g, %g, %g)", p.x, p.y, p.z);
+    return std::isnan(p.x) ? std::string("-") : std::string(b);
+  };
+  std::printf("%-9s %-20s %-20s %10s %10s %10s %10s  %s  %s\n", "kind", "solid_a", "solid_b", "gap", "depth",
+              "overlap", "volume", "point", "point_b");
+  for (const SolidPair& p : r.pairs)
+    std::printf("%-9s %-20s %-20s %10s %10s %10s %10s  %s  %s\n", std::string(enum_name(p.kind)).c_str(),
+                solid_label(s, p.solid_a).c_str(), solid_label(s, p.solid_b).c_str(), num(p.gap).c_str(),
+                num(p.depth).c_str(), num(p.overlap_length).c_str(), num(p.volume).c_str(), point(p.point).c_str(),
+                point(p.point_b).c_str());
 }
 
 // False-colour picture of OverlapCount per triangle (blue: none); false if cancelled.
@@ -204,6 +256,8 @@ int run_overlaps(const OverlapsCli& o) {
   OutputFile::check_target(o.out, o.force);
   const KernelKind kernel = exact_kernel_option(o.kernel);
   if (!(o.tol >= 0) || !std::isfinite(o.tol)) throw InputError("--tol must be a finite number >= 0");
+  if (!(o.clearance >= 0) || !std::isfinite(o.clearance))
+    throw InputError("--clearance must be a finite number >= 0");
   check_picture_options(o.png, o.out, o.force, o.png_size, o.png_view);
 
   Scene scene;
@@ -228,15 +282,28 @@ int run_overlaps(const OverlapsCli& o) {
   ray_bar.finish();
   if (!rep.completed || interrupted()) return cancelled();
 
+  // The pairs reuse the interference of an axis grid; other rays leave them a grid of their own.
+  LazyProgressBar pair_bar("pairs", o.progress);
+  const int grid_n = axes_grid_n(o.rays);
+  SolidPairOptions popts;
+  popts.clearance = o.clearance;
+  popts.kernel = kernel;
+  const SolidPairReport pairs = grid_n > 0
+                                    ? classify_solid_pairs(accel, cop, rep, grid_n, o.clearance, std::ref(pair_bar))
+                                    : analyse_solid_pairs(accel, popts, std::ref(pair_bar));
+  pair_bar.finish();
+  if (!pairs.completed || interrupted()) return cancelled();
+
   print_summary(scene, cop, rep, o);
+  print_pairs(scene, pairs);
   std::fflush(stdout);
   if (!o.png.empty() && !write_png(accel, triangle_overlap_arrays(scene, &cop, &rep), o)) return cancelled();
   std::fflush(stdout);
   return write_output(o.out, format, o.force, [&](Format f, std::FILE* out) {
     switch (f) {
-      case Format::vtp: write_vtp_result(out, scene, triangle_overlap_arrays(scene, &cop, &rep)); break;
+      case Format::vtp: write_vtp_result(out, scene, triangle_overlap_arrays(scene, &cop, &rep), pairs); break;
       case Format::csv: write_csv(out, scene, cop, rep); break;
-      case Format::json: write_json(out, scene, o, cop, rep); break;
+      case Format::json: write_json(out, scene, o, cop, rep, pairs); break;
       case Format::none: break;
     }
   });
@@ -250,6 +317,10 @@ std::function<int()> register_overlaps(CLI::App& app) {
   cmd->add_option("--tol", o->tol,
                   "Also report faces within this distance of coplanar (model units); 0 = exactly coplanar only")
       ->capture_default_str();
+  cmd->add_option("--clearance", o->clearance,
+                  "Also report solid pairs closer than this (model units) as clearance; 0 = clash and contact only")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd->add_option("--rays", o->rays,
                   "Rays for the statistic and interference: axes:n=N (N x N along each axis), "
                   "grid:axis=x|y|z,n=N, random:n=N[,seed=S], or a CSV file")
@@ -258,7 +329,7 @@ std::function<int()> register_overlaps(CLI::App& app) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   add_exact_kernel_option(cmd, o->kernel);
-  cmd->add_option("-o,--out", o->out, "Output file: .vtp (per-triangle arrays), .csv (per solid pair) or .json (all)");
+  cmd->add_option("-o,--out", o->out, "Output file: .vtp (per-triangle arrays), .csv (per solid pair) or .json (all, with the pairs)");
   cmd->add_option("--png", o->png, "Also render a false-colour picture of OverlapCount per triangle to this PNG");
   add_camera_options(cmd, o->png_size, o->png_view, "Picture");
   add_force_and_progress_flags(cmd, o->force, o->progress, "existing output files");

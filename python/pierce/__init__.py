@@ -18,7 +18,7 @@ from ._core import CancelToken, Cancelled, InputError, Scene, gen, is_exact, ker
 __all__ = ["Scene", "Geometry", "gen", "load", "load_mesh", "load_rays", "mesh_report",
            "Hits", "trace", "kernels", "is_exact",
            "thickness", "thickness_at", "thickness_along", "THICKNESS_STATUS",
-           "coplanar_overlaps", "ray_overlaps", "axis_grid_rays", "triangle_overlap_arrays",
+           "coplanar_overlaps", "ray_overlaps", "axis_grid_rays", "triangle_overlap_arrays", "clearance",
            "Partitions", "partitions", "Shots", "shotlines", "shotline", "SHOT_KINDS", "check_csg",
            "classify_points", "POINT_CLASSES", "gqa", "HAS_CAD",
            "CancelToken", "Cancelled", "InputError"]

@@ -1,8 +1,12 @@
-// Overlap diagnostics: coplanar triangle pairs, interference along rays, per-triangle heat maps.
+// Overlap diagnostics: coplanar triangle pairs, interference along rays, per-triangle heat maps,
+// solid pairs classified as clash, contact or clearance.
 #include <pybind11/stl.h>
+
+#include <cmath>
 
 #include "common.h"
 #include "pierce/analysis/overlaps.h"
+#include "pierce/analysis/solid_pairs.h"
 #include "progress.h"
 
 namespace pierce::py {
@@ -197,6 +201,54 @@ void bind_overlaps(pyb::module_& m) {
       },
       pyb::arg("scene"), pyb::arg("coplanar") = nullptr, pyb::arg("rays") = nullptr,
       "Per-triangle heat-map arrays (triangle (g, p) at tri_offset[g] + p) from either or both reports.");
+
+  // --- solid pairs: clash, contact, clearance ---
+  pyb::class_<SolidPair>(m, "SolidPair",
+                         "Solids solid_a < solid_b that clash, touch or come within the clearance; fields that do\n"
+                         "not apply to the kind are NaN (point_b of a contact).")
+      .def_readonly("solid_a", &SolidPair::solid_a)
+      .def_readonly("solid_b", &SolidPair::solid_b)
+      .def_property_readonly("kind", [](const SolidPair& p) { return std::string(enum_name(p.kind)); },
+                             "'clash', 'contact' or 'clearance'")
+      .def_readonly("gap", &SolidPair::gap, "contact: 0; clearance: the smallest distance")
+      .def_readonly("depth", &SolidPair::depth, "clash: how far one must move to clear the other")
+      .def_readonly("overlap_length", &SolidPair::overlap_length, "clash: longest overlap along a ray")
+      .def_readonly("volume", &SolidPair::volume, "clash: shared volume estimated from the ray grid")
+      .def_readonly("point", &SolidPair::point)
+      .def_readonly("point_b", &SolidPair::point_b)
+      .def("__repr__", [](const SolidPair& p) {
+        const std::string kind(enum_name(p.kind));
+        const double v = p.kind == PairKind::clash ? p.depth : p.gap;
+        return "<pierce.SolidPair " + std::to_string(p.solid_a) + "-" + std::to_string(p.solid_b) + ": " + kind +
+               (p.kind == PairKind::clash ? ", depth " : ", gap ") + std::to_string(v) + ">";
+      });
+  pyb::class_<SolidPairReport>(m, "SolidPairReport")
+      .def_readonly("clearance", &SolidPairReport::clearance)
+      .def_readonly("pairs", &SolidPairReport::pairs, "clash (deepest first), contact, clearance (nearest first)")
+      .def_property_readonly("tri_offset", [](const SolidPairReport& r) { return offsets_array(r.tri_offset); })
+      .def_property_readonly("triangle_clearance",
+                             [](const SolidPairReport& r) { return vector_array(r.triangle_clearance); },
+                             "per triangle: distance to the nearest other solid, capped at clearance")
+      .def_readonly("completed", &SolidPairReport::completed);
+
+  m.def(
+      "clearance",
+      [](PyScene& s, double clearance, int grid, const std::string& kernel, const pyb::object& progress,
+         CancelToken* cancel) {
+        if (!(clearance >= 0) || !std::isfinite(clearance))
+          throw pyb::value_error("clearance: clearance must be a finite number >= 0");
+        if (grid < 1) throw pyb::value_error("clearance: grid must be >= 1");
+        SolidPairOptions o;
+        o.clearance = clearance;
+        o.grid_n = grid;
+        o.kernel = kernel_from_name(kernel);
+        return run_analysis(s, progress, cancel, 0,
+                            [&](const Progress& p) { return analyse_solid_pairs(s.accel(), o, p); });
+      },
+      pyb::arg("scene"), pyb::kw_only(), pyb::arg("clearance") = 0.0, pyb::arg("grid") = 128,
+      pyb::arg("kernel") = default_kernel_name(), pyb::arg("progress") = pyb::none(), pyb::arg("cancel") = nullptr,
+      "Every pair of solids within `clearance`: clash (interiors overlap along grid x grid rays per axis),\n"
+      "contact (faces lie on one another, gap 0) or clearance (exact smallest distance below `clearance`).");
 }
 
 }  // namespace pierce::py

@@ -123,6 +123,31 @@ class OverlapTest(unittest.TestCase):
         r = pierce.ray_overlaps(s, grid=4)
         self.assertEqual(r.coplanar.share_equal, 1.0)
 
+    def test_clearance_pairs(self):
+        # a-b touch on x = 1, b-c 0.3 apart along x, c-d clash 0.5 deep along x, b-d 0.8 apart, e far.
+        s = scene_of(gen.box((0, 0, 0), (1, 1, 1), "a"), gen.box((1, 0, 0), (2, 1, 1), "b"),
+                     gen.box((2.3, 0, 0), (3.3, 1, 1), "c"), gen.box((2.8, -5, -5), (12.8, 5, 5), "d"),
+                     gen.box((40, 0, 0), (41, 1, 1), "e"))
+        r = pierce.clearance(s, clearance=0.5, grid=64)
+        self.assertTrue(r.completed)
+        self.assertEqual([(p.kind, p.solid_a, p.solid_b) for p in r.pairs],
+                         [("clash", 2, 3), ("contact", 0, 1), ("clearance", 1, 2)])
+        clash, contact, gap = r.pairs
+        self.assertAlmostEqual(clash.depth, 0.5, delta=0.005)
+        self.assertTrue(math.isnan(clash.gap))
+        self.assertEqual(contact.gap, 0.0)
+        self.assertAlmostEqual(gap.gap, 0.3, delta=1e-9)
+        self.assertEqual(gap.point[0], 2.0)
+        self.assertEqual(gap.point_b[0], 2.3)
+        self.assertEqual(len(r.triangle_clearance), s.triangle_count)
+        self.assertTrue(np.all(r.triangle_clearance <= 0.5))
+        # e's triangles have no other solid within the clearance.
+        self.assertTrue(np.all(r.triangle_clearance[r.tri_offset[4]:r.tri_offset[5]] == 0.5))
+        # Clearance 0: clash and contact only.
+        self.assertEqual([p.kind for p in pierce.clearance(s, grid=64).pairs], ["clash", "contact"])
+        with self.assertRaises(ValueError):
+            pierce.clearance(s, clearance=-1)
+
     def test_axis_grid_rays(self):
         s = scene_of(gen.box((0, 0, 0), (1, 2, 3)))
         o, d, lo, hi = pierce.axis_grid_rays(s, 4, axes=[2])

@@ -2,8 +2,10 @@
 // contact and coplanar faces (never as interference), per-triangle arrays, errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
+#include <vtkCell.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
@@ -81,6 +83,25 @@ TEST(VtkOverlaps, SeparateSolidsHaveNoPairs) {
   EXPECT_EQ(f->GetPairsOutput()->GetNumberOfRows(), 0);
   auto* a = vtkPolyData::SafeDownCast(vtkMultiBlockDataSet::SafeDownCast(f->GetOutputDataObject(0))->GetBlock(0));
   EXPECT_EQ(a->GetCellData()->GetArray("OverlapCount")->GetRange()[1], 0.0);
+}
+
+TEST(VtkOverlaps, ClearanceArrayMeasuresTheGap) {
+  // b is 0.3 from a's face x = 1; a's face x = 0 is 1.3 away, beyond the clearance.
+  auto mb = to_multiblock({gen::box({0, 0, 0}, {1, 1, 1}, "a"), gen::box({1.3, 0, 0}, {2.3, 1, 1}, "b")});
+  auto f = vtkSmartPointer<vtkPierceOverlaps>::New();
+  f->SetInputData(mb);
+  f->SetRaysPerAxis(8);
+  f->SetClearance(0.5);
+  f->Update();
+  auto* a = vtkPolyData::SafeDownCast(vtkMultiBlockDataSet::SafeDownCast(f->GetOutputDataObject(0))->GetBlock(0));
+  vtkDataArray* clearance = a->GetCellData()->GetArray("Clearance");
+  ASSERT_NE(clearance, nullptr);
+  ASSERT_EQ(clearance->GetNumberOfTuples(), a->GetNumberOfCells());
+  for (vtkIdType c = 0; c < a->GetNumberOfCells(); ++c) {
+    double xmax = 0;
+    for (vtkIdType k = 0; k < 3; ++k) xmax = std::max(xmax, a->GetPoint(a->GetCell(c)->GetPointId(int(k)))[0]);
+    EXPECT_NEAR(clearance->GetTuple1(c), xmax == 1.0 ? 0.3 : 0.5, 1e-9) << c;
+  }
 }
 
 TEST(VtkOverlaps, EmptyInputIsAnError) {

@@ -52,14 +52,20 @@ bool RunOverlaps(const pierce::Scene& scene, const OverlapSettings& settings, Pr
     if (!out.coplanar->completed || progress.CheckAbort()) return false;
   }
   if (with_rays) {
-    progress.SetRange(settings.find_coplanar ? 0.3 : 0.0, 1.0);
+    progress.SetRange(settings.find_coplanar ? 0.3 : 0.0, 0.9);
     const pierce::Accel accel(scene);
     pa::RayOverlapOptions options;
     options.epsilon_rel = settings.epsilon_rel;
-    options.keep_intervals = false;
+    options.keep_intervals = true;  // the solid pairs measure clashes from the intervals
     const std::vector<pierce::Ray> rays = pa::axis_grid_rays(scene.bounds(), settings.rays_per_axis);
     out.rays = pa::analyse_ray_overlaps(accel, rays, options, progress.Callback());
     if (!out.rays->completed || progress.CheckAbort()) return false;
+    // The pairs take only the exact coplanar pairs: the report above when there is one.
+    progress.SetRange(0.9, 1.0);
+    const pa::CoplanarReport exact = out.coplanar ? pa::CoplanarReport{} : pa::find_coplanar_overlaps(scene);
+    out.pairs = pa::classify_solid_pairs(accel, out.coplanar ? *out.coplanar : exact, *out.rays,
+                                         settings.rays_per_axis, settings.clearance, progress.Callback());
+    if (!out.pairs->completed || progress.CheckAbort()) return false;
   }
   return true;
 }
@@ -91,6 +97,12 @@ void AttachOverlaps(const OverlapResults& results, Surfaces& surfaces) {
     for (vtkIntArray* array : {solid.Get(), overlap.Get(), coplanar.Get(), partner.Get(), coplanar_hits.Get(),
                                interference_hits.Get()})
       cd->AddArray(array);
+    if (results.pairs) {
+      auto clearance = NewArray<vtkDoubleArray>("Clearance", n);
+      for (vtkIdType c = 0; c < n; ++c)
+        clearance->SetValue(c, results.pairs->triangle_clearance[base + std::size_t(PrimOfCell(solid_piece, c))]);
+      cd->AddArray(clearance);
+    }
     cd->SetActiveScalars("OverlapCount");
   }
 }

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "pierce/analysis/overlaps.h"
+#include "pierce/analysis/solid_pairs.h"
 
 class vtkFieldData;
 class vtkTable;
@@ -18,11 +19,13 @@ struct OverlapSettings {
   double tolerance = 0.0;
   int rays_per_axis = 128;  // 0: no ray analysis
   double epsilon_rel = 1e-5;
+  double clearance = 0.0;  // the Clearance array's cap (with the rays)
 };
 
 struct OverlapResults {
   std::optional<pierce::analysis::CoplanarReport> coplanar;
   std::optional<pierce::analysis::RayOverlapReport> rays;
+  std::optional<pierce::analysis::SolidPairReport> pairs;  // with the rays
 };
 
 // False when cancelled. Throws std::invalid_argument on bad settings (from the analyses).

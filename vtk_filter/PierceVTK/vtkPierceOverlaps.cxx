@@ -20,6 +20,7 @@ vtkPierceOverlaps::vtkPierceOverlaps()
   , Tolerance(0.0)
   , RaysPerAxis(128)
   , EpsilonRel(1e-5)
+  , Clearance(0.0)
 {
 }
 
@@ -38,6 +39,7 @@ int vtkPierceOverlaps::AnalyseSurfaces(
   settings.tolerance = this->Tolerance;
   settings.rays_per_axis = this->RaysPerAxis;
   settings.epsilon_rel = this->EpsilonRel;
+  settings.clearance = this->Clearance;
   // Every rank analyses the whole scene (the coplanar pairs and the ray grid are global); each
   // keeps its own triangles' arrays, rank 0 the table.
   pierce_vtk::ProgressBridge progress(this);
@@ -72,4 +74,5 @@ void vtkPierceOverlaps::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Tolerance: " << this->Tolerance << "\n";
   os << indent << "RaysPerAxis: " << this->RaysPerAxis << "\n";
   os << indent << "EpsilonRel: " << this->EpsilonRel << "\n";
+  os << indent << "Clearance: " << this->Clearance << "\n";
 }

@@ -16,7 +16,10 @@
  *
  * Output 0: the triangulated surfaces (same structure as the input) with cell arrays SolidId,
  * OverlapCount (coplanar partners + interference crossings), CoplanarCount, CoplanarPartner
- * (solid of a coplanar partner, another solid first; -1 none), CoplanarHits, InterferenceHits.
+ * (solid of a coplanar partner, another solid first; -1 none), CoplanarHits, InterferenceHits,
+ * and, when the rays run, Clearance: each triangle's distance to the nearest other solid, capped
+ * at the Clearance property (0 where it touches or clashes; `pierce overlaps --clearance`,
+ * pierce/analysis/solid_pairs.h).
  * Output 1 (vtkTable): one row per solid pair and kind ("interference", "contact", "coplanar")
  * with SolidA, SolidB, NameA, NameB, Count, MaxDepth, Penetration, Area and Where.
  *
@@ -74,6 +77,16 @@ public:
   vtkGetMacro(EpsilonRel, double);
   ///@}
 
+  ///@{
+  /**
+   * Distance (model units) up to which the Clearance array measures the gap to the nearest other
+   * solid; triangles with none nearer get this value. Default 0 (the array is then 0 everywhere).
+   * Needs the rays (RaysPerAxis > 0).
+   */
+  vtkSetClampMacro(Clearance, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(Clearance, double);
+  ///@}
+
   /**
    * Output 1, the solid-pair table.
    */
@@ -90,6 +103,7 @@ protected:
   double Tolerance;
   int RaysPerAxis;
   double EpsilonRel;
+  double Clearance;
 
 private:
   vtkPierceOverlaps(const vtkPierceOverlaps&) = delete;

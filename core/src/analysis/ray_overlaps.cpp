@@ -70,14 +70,22 @@ bool contains(const std::vector<std::uint32_t>& sorted, std::uint32_t g) {
 
 }  // namespace
 
-std::vector<Ray> axis_grid_rays(const BBoxd& bounds, int n, std::span<const int> axes) {
-  std::vector<Ray> rays;
-  if (bounds.empty() || n <= 0) return rays;
+namespace {
+// The bounds enlarged by 1% of their largest extent: the box the axis grid covers.
+BBoxd axis_grid_box(const BBoxd& bounds) {
   const Vec3d ext = bounds.extent();
   const double pad = 0.01 * std::max({ext.x, ext.y, ext.z, 1e-30});
   BBoxd b = bounds;
   b.lo = b.lo - Vec3d{pad, pad, pad};
   b.hi = b.hi + Vec3d{pad, pad, pad};
+  return b;
+}
+}  // namespace
+
+std::vector<Ray> axis_grid_rays(const BBoxd& bounds, int n, std::span<const int> axes) {
+  std::vector<Ray> rays;
+  if (bounds.empty() || n <= 0) return rays;
+  const BBoxd b = axis_grid_box(bounds);
   const Vec3d e = b.extent();
   for (int axis : axes) {
     const int i = (axis + 1) % 3, j = (axis + 2) % 3;
@@ -94,6 +102,12 @@ std::vector<Ray> axis_grid_rays(const BBoxd& bounds, int n, std::span<const int>
       }
   }
   return rays;
+}
+
+double axis_grid_cell_area(const BBoxd& bounds, int n, int axis) {
+  if (bounds.empty() || n <= 0) return 0;
+  const Vec3d e = axis_grid_box(bounds).extent();
+  return e[(axis + 1) % 3] * e[(axis + 2) % 3] / (double(n) * double(n));
 }
 
 RayOverlapReport analyse_ray_overlaps(const Accel& accel, const std::vector<Ray>& rays,

@@ -84,4 +84,8 @@ inline constexpr int kAllAxes[] = {0, 1, 2};
 // the bounds enlarged by 1%, starting outside them. Deterministic.
 std::vector<Ray> axis_grid_rays(const BBoxd& bounds, int n, std::span<const int> axes = kAllAxes);
 
+// The cross-section area of one cell of axis_grid_rays(bounds, n) along `axis`: the volume a unit
+// length of such a ray stands for. 0 for empty bounds or n <= 0.
+double axis_grid_cell_area(const BBoxd& bounds, int n, int axis);
+
 }  // namespace pierce::analysis

@@ -1,0 +1,319 @@
+#include "pierce/analysis/solid_pairs.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <utility>
+
+#include "pierce/analysis/bvh_query.h"
+#include "pierce/parallel_for_items.h"
+
+namespace pierce::analysis {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+struct Closest2 {
+  double dist2 = std::numeric_limits<double>::infinity();
+  Vec3d on_a, on_b;
+  void offer(double d2, Vec3d a, Vec3d b) {
+    if (d2 < dist2) dist2 = d2, on_a = a, on_b = b;
+  }
+};
+
+// Closest points of segments p1q1 and p2q2 (Ericson, Real-Time Collision Detection, 5.1.9).
+void closest_on_segments(Vec3d p1, Vec3d q1, Vec3d p2, Vec3d q2, Closest2& best) {
+  const Vec3d d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+  const double a = dot(d1, d1), e = dot(d2, d2), f = dot(d2, r);
+  auto clamp01 = [](double x) { return std::clamp(x, 0.0, 1.0); };
+  double s = 0, t = 0;
+  if (a > 0 && e > 0) {
+    const double b = dot(d1, d2), c = dot(d1, r), denom = a * e - b * b;
+    s = denom > 0 ? clamp01((b * f - c * e) / denom) : 0;
+    t = (b * s + f) / e;
+    if (t < 0) t = 0, s = clamp01(-c / a);
+    else if (t > 1) t = 1, s = clamp01((b - c) / a);
+  } else if (a > 0) {
+    s = clamp01(-dot(d1, r) / a);
+  } else if (e > 0) {
+    t = clamp01(f / e);
+  }
+  const Vec3d p = p1 + d1 * s, q = p2 + d2 * t, d = p - q;
+  best.offer(dot(d, d), p, q);
+}
+
+// Where segment pq crosses the interior or boundary of triangle t (Moller-Trumbore); false when it
+// does not or lies in the triangle's plane (coplanar contact is found by the other features).
+bool segment_crosses(Vec3d p, Vec3d q, const Vec3d t[3], Vec3d& at) {
+  const Vec3d d = q - p, e1 = t[1] - t[0], e2 = t[2] - t[0];
+  const Vec3d h = cross(d, e2);
+  const double det = dot(e1, h);
+  if (det == 0) return false;
+  const double inv = 1 / det;
+  const Vec3d s = p - t[0];
+  const double u = dot(s, h) * inv;
+  if (u < 0 || u > 1) return false;
+  const Vec3d g = cross(s, e1);
+  const double v = dot(d, g) * inv;
+  if (v < 0 || u + v > 1) return false;
+  const double w = dot(e2, g) * inv;
+  if (w < 0 || w > 1) return false;
+  at = p + d * w;
+  return true;
+}
+
+bool is_degenerate_triangle(const Vec3d t[3]) {
+  const Vec3d n = cross(t[1] - t[0], t[2] - t[0]);
+  return !(dot(n, n) > 0);
+}
+
+}  // namespace
+
+TrianglePairDistance triangle_distance(const Vec3d a[3], const Vec3d b[3]) {
+  // Intersecting triangles: an edge of one crosses the other (or, coplanar, an edge crosses an edge
+  // or a corner lies inside, which the features below find at distance 0).
+  for (int k = 0; k < 3; ++k) {
+    Vec3d at;
+    if (segment_crosses(a[k], a[(k + 1) % 3], b, at) || segment_crosses(b[k], b[(k + 1) % 3], a, at))
+      return {0, at, at};
+  }
+  // Otherwise the closest points are a corner and the other triangle, or two edges.
+  Closest2 best;
+  for (int k = 0; k < 3; ++k) {
+    const Vec3d pb = closest_point_on_triangle(a[k], b[0], b[1], b[2]), db = pb - a[k];
+    best.offer(dot(db, db), a[k], pb);
+    const Vec3d pa = closest_point_on_triangle(b[k], a[0], a[1], a[2]), da = pa - b[k];
+    best.offer(dot(da, da), pa, b[k]);
+  }
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) closest_on_segments(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3], best);
+  return {best.dist2, best.on_a, best.on_b};
+}
+
+namespace {
+
+// One triangle's nearest point in one other solid.
+struct Near {
+  std::uint32_t other = 0;
+  double dist2 = 0;
+  Vec3d on_self, on_other;
+};
+
+void corners(const Geometry& g, std::uint32_t p, Vec3d out[3]) {
+  for (int k = 0; k < 3; ++k) out[k] = g.vertices[g.triangles[p][k]];
+}
+
+// For every triangle, its nearest point in each other solid within distance `d` (strictly), by box
+// queries grown by d on the scene's BVH. Item i is the triangle at tri_offset[g] + p.
+bool nearest_per_triangle(const Accel& accel, const std::vector<std::size_t>& tri_offset, double d,
+                          std::vector<std::vector<Near>>& near, const Progress& progress) {
+  const Scene& scene = accel.scene();
+  const WideBvhd& bvh = accel.wide_double();
+  const std::size_t n = tri_offset.back();
+  near.assign(n, {});
+  tbb::enumerable_thread_specific<NodeStack<double>> stacks;
+  return parallel_for_items(n, 64, stacks, progress, [&](NodeStack<double>& stack, std::size_t i) {
+    const auto g = std::uint32_t(std::upper_bound(tri_offset.begin(), tri_offset.end(), i) - tri_offset.begin() - 1);
+    const Geometry& geom = scene.geometry(g);
+    Vec3d a[3];
+    corners(geom, std::uint32_t(i - tri_offset[g]), a);
+    if (is_degenerate_triangle(a)) return;
+    BBoxd box;
+    for (const Vec3d& c : a) box.extend(c);
+    box.lo = box.lo - Vec3d{d, d, d};
+    box.hi = box.hi + Vec3d{d, d, d};
+    std::vector<Near>& mine = near[i];
+    for_each_overlapping(bvh, box, stack, [&](const Triangle<double>& t) {
+      if (t.geom == g) return;
+      const Vec3d b[3] = {t.v0, t.v1, t.v2};
+      const TrianglePairDistance td = triangle_distance(a, b);
+      if (!(td.dist2 < d * d)) return;
+      auto it = std::find_if(mine.begin(), mine.end(), [&](const Near& x) { return x.other == t.geom; });
+      if (it == mine.end()) {
+        mine.push_back({t.geom, td.dist2, td.on_a, td.on_b});
+      } else if (td.dist2 < it->dist2) {
+        // Equal distances keep the first found; the points may then depend on the BVH's layout, the
+        // distance does not.
+        *it = {t.geom, td.dist2, td.on_a, td.on_b};
+      }
+    });
+  });
+}
+
+using PairKey = std::pair<std::uint32_t, std::uint32_t>;
+
+SolidPair clash_pair(const InterferencePair& p) {
+  SolidPair s;
+  s.solid_a = p.a, s.solid_b = p.b;
+  s.kind = PairKind::clash;
+  s.gap = kNaN;
+  s.depth = std::isnan(p.penetration) ? p.max_depth : p.penetration;
+  s.overlap_length = p.max_depth;
+  s.volume = 0;
+  s.point = p.max_depth_entry;
+  s.point_b = {kNaN, kNaN, kNaN};
+  return s;
+}
+
+SolidPair contact_pair(std::uint32_t a, std::uint32_t b, Vec3d where) {
+  SolidPair s;
+  s.solid_a = a, s.solid_b = b;
+  s.kind = PairKind::contact;
+  s.gap = 0;
+  s.depth = s.overlap_length = s.volume = kNaN;
+  s.point = where;
+  s.point_b = {kNaN, kNaN, kNaN};
+  return s;
+}
+
+// Clash volume and the interval where the depth occurs, from the kept intervals (ray r of the grid
+// runs along axis r / grid_n^2).
+void measure_clashes(const Scene& scene, const RayOverlapReport& rays, int grid_n, std::vector<SolidPair>& clashes) {
+  std::map<PairKey, std::size_t> index;
+  for (std::size_t k = 0; k < clashes.size(); ++k) index[{clashes[k].solid_a, clashes[k].solid_b}] = k;
+  const double area[3] = {axis_grid_cell_area(scene.bounds(), grid_n, 0),
+                          axis_grid_cell_area(scene.bounds(), grid_n, 1),
+                          axis_grid_cell_area(scene.bounds(), grid_n, 2)};
+  const std::size_t per_axis = std::size_t(grid_n) * std::size_t(grid_n);
+  std::vector<std::array<double, 3>> volume(clashes.size(), {0.0, 0.0, 0.0});
+  std::vector<std::array<const Interference*, 3>> longest(clashes.size(), {nullptr, nullptr, nullptr});
+  for (const Interference& x : rays.intervals) {
+    const auto it = index.find({x.a, x.b});
+    const auto axis = std::size_t(x.ray / per_axis);
+    if (it == index.end() || axis > 2) continue;
+    volume[it->second][axis] += x.depth * area[axis];  // each ray stands for its cell
+    const Interference*& l = longest[it->second][axis];
+    if (!l || x.depth > l->depth) l = &x;
+  }
+  // The depth axis: the one whose longest interval is shortest (the first such axis). Its rays
+  // cross the overlap where it is thinnest, measuring that thickness exactly along each ray and
+  // seeing the overlap's widest cross-section, so its volume is the estimate kept: the other
+  // axes' cells can be as wide as a thin overlap, misplacing its faces by up to a cell.
+  for (std::size_t k = 0; k < clashes.size(); ++k) {
+    int best = -1;
+    for (int axis = 0; axis < 3; ++axis)
+      if (longest[k][axis] && (best < 0 || longest[k][axis]->depth < longest[k][best]->depth)) best = axis;
+    if (best < 0) continue;
+    clashes[k].point = longest[k][best]->entry;
+    clashes[k].point_b = longest[k][best]->exit;
+    clashes[k].volume = volume[k][best];
+  }
+}
+
+}  // namespace
+
+SolidPairReport classify_solid_pairs(const Accel& accel, const CoplanarReport& coplanar,
+                                     const RayOverlapReport& rays, int grid_n, double clearance,
+                                     const Progress& progress) {
+  if (!(clearance >= 0) || !std::isfinite(clearance))
+    throw std::invalid_argument("solid pairs: clearance must be a finite number >= 0");
+  if (grid_n <= 0) throw std::invalid_argument("solid pairs: grid_n must be > 0");
+  const Scene& scene = accel.scene();
+  SolidPairReport r;
+  r.clearance = clearance;
+  r.tri_offset.push_back(0);
+  for (const Geometry& g : scene.geometries()) r.tri_offset.push_back(r.tri_offset.back() + g.triangles.size());
+
+  // Clash: interference along the rays.
+  std::vector<SolidPair> clashes;
+  std::set<PairKey> decided;  // pairs already given a kind
+  for (const InterferencePair& p : rays.interferences) {
+    clashes.push_back(clash_pair(p));
+    decided.insert({p.a, p.b});
+  }
+  measure_clashes(scene, rays, grid_n, clashes);
+
+  // Contact: exactly coplanar overlapping faces of two solids, or rays crossing a shared surface.
+  // The point: the centroid of the largest exact overlap, else the first ray crossing.
+  std::map<PairKey, std::pair<double, Vec3d>> touching;
+  for (const CoplanarPair& p : coplanar.pairs) {
+    if (!p.exact || p.geom_a == p.geom_b) continue;
+    const PairKey key{std::min(p.geom_a, p.geom_b), std::max(p.geom_a, p.geom_b)};
+    auto [it, fresh] = touching.try_emplace(key, p.area, p.centroid);
+    if (!fresh && p.area > it->second.first) it->second = {p.area, p.centroid};
+  }
+  for (const ContactPair& p : rays.contacts) touching.try_emplace({p.a, p.b}, -1.0, p.where);
+  std::vector<SolidPair> contacts;
+  for (const auto& [key, v] : touching)
+    if (!decided.count(key)) {
+      contacts.push_back(contact_pair(key.first, key.second, v.second));
+      decided.insert(key);
+    }
+
+  // Clearance: the nearest triangles of the remaining pairs.
+  r.triangle_clearance.assign(r.tri_offset.back(), clearance);
+  std::map<PairKey, SolidPair> nearest;
+  if (clearance > 0) {
+    std::vector<std::vector<Near>> near;
+    if (!nearest_per_triangle(accel, r.tri_offset, clearance, near, progress)) {
+      r.completed = false;
+      return r;
+    }
+    for (std::uint32_t g = 0; g < scene.geometries().size(); ++g)
+      for (std::size_t i = r.tri_offset[g]; i < r.tri_offset[g + 1]; ++i)
+        for (const Near& x : near[i]) {
+          r.triangle_clearance[i] = std::min(r.triangle_clearance[i], std::sqrt(x.dist2));
+          if (x.other < g) continue;  // the pair is measured from its lower solid's triangles
+          auto [it, fresh] = nearest.try_emplace({g, x.other});
+          SolidPair& s = it->second;
+          if (fresh || x.dist2 < s.gap) {
+            s.solid_a = g, s.solid_b = x.other;
+            s.kind = PairKind::clearance;
+            s.gap = x.dist2;  // squared until the end
+            s.depth = s.overlap_length = s.volume = kNaN;
+            s.point = x.on_self, s.point_b = x.on_other;
+          }
+        }
+  }
+  // Contact and clash make a triangle's clearance 0 where it takes part in them.
+  for (const CoplanarPair& p : coplanar.pairs)
+    if (p.exact && p.geom_a != p.geom_b)
+      r.triangle_clearance[r.tri_offset[p.geom_a] + p.prim_a] = r.triangle_clearance[r.tri_offset[p.geom_b] + p.prim_b] = 0;
+  if (rays.interference_hits.size() == r.triangle_clearance.size())
+    for (std::size_t i = 0; i < r.triangle_clearance.size(); ++i)
+      if (rays.interference_hits[i] > 0) r.triangle_clearance[i] = 0;
+
+  std::vector<SolidPair> gaps;
+  for (auto& [key, s] : nearest)
+    if (!decided.count(key)) {
+      s.gap = std::sqrt(s.gap);
+      gaps.push_back(s);
+    }
+
+  auto by_pair = [](const SolidPair& x, const SolidPair& y) {
+    return std::pair(x.solid_a, x.solid_b) < std::pair(y.solid_a, y.solid_b);
+  };
+  std::stable_sort(clashes.begin(), clashes.end(), [&](const SolidPair& x, const SolidPair& y) {
+    return x.depth != y.depth ? x.depth > y.depth : by_pair(x, y);
+  });
+  std::stable_sort(gaps.begin(), gaps.end(), [&](const SolidPair& x, const SolidPair& y) {
+    return x.gap != y.gap ? x.gap < y.gap : by_pair(x, y);
+  });
+  r.pairs = std::move(clashes);
+  r.pairs.insert(r.pairs.end(), contacts.begin(), contacts.end());  // already by (a, b)
+  r.pairs.insert(r.pairs.end(), gaps.begin(), gaps.end());
+  return r;
+}
+
+SolidPairReport analyse_solid_pairs(const Accel& accel, const SolidPairOptions& opts, const Progress& progress) {
+  if (opts.grid_n <= 0) throw std::invalid_argument("solid pairs: grid_n must be > 0");
+  if (!(opts.clearance >= 0) || !std::isfinite(opts.clearance))
+    throw std::invalid_argument("solid pairs: clearance must be a finite number >= 0");
+  const CoplanarReport coplanar = find_coplanar_overlaps(accel.scene(), {}, progress);
+  if (!coplanar.completed) return {opts.clearance, {}, {}, {}, false};
+  RayOverlapOptions ro;
+  ro.kernel = opts.kernel;
+  ro.tie_tolerance_rel = opts.tie_tolerance_rel;
+  ro.keep_intervals = true;
+  const RayOverlapReport rays =
+      analyse_ray_overlaps(accel, axis_grid_rays(accel.scene().bounds(), opts.grid_n), ro, progress);
+  if (!rays.completed) return {opts.clearance, {}, {}, {}, false};
+  return classify_solid_pairs(accel, coplanar, rays, opts.grid_n, opts.clearance, progress);
+}
+
+}  // namespace pierce::analysis
