@@ -112,7 +112,7 @@ struct Worker {
   std::vector<Sub> subs;
 };
 
-// One triangle to refine for a region: the flagged area found on it.
+// One triangle to refine, for the first region that reached it.
 struct RefineItem {
   std::uint32_t region, geom, tri;
   double coarse, fine;  // sub-triangle sizes: uniform down to coarse, down to fine where mixed
@@ -308,21 +308,47 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
   KernelOptions kopts;
   kopts.order.tie = TieOrder::leave_before_enter;  // what ray_exit_distance requires
   tbb::enumerable_thread_specific<Worker> workers([&] { return Worker{HitIterator(accel, opts.kernel, kopts), {}, {}}; });
-  std::vector<double> item_area(items.size(), 0);
+  // A region of class `want` among the samples of triangle `tri` (its own, or its corners'), or -1.
+  auto region_on = [&](const SolidTopo& t, std::uint32_t tri, std::uint8_t want) -> std::int32_t {
+    auto of = [&](std::uint32_t element) {
+      const std::uint32_t row = t.row_of[element];
+      return row != kInvalidId && flag[row] == want ? res.region[row] : -1;
+    };
+    if (opts.per == SampleAt::face) return of(tri);
+    for (auto v : t.geo->triangles[tri])
+      if (const std::int32_t r = of(v); r >= 0) return r;
+    return -1;
+  };
+  // Per item, the flagged area by region: a flagged sub-triangle belongs to the region of its
+  // triangle's samples, else to that of the samples where its ray exits (as samples are grouped),
+  // else to the region that reached the triangle first. So a coarse triangle under two thin
+  // floors gives each floor its own share.
+  std::vector<std::vector<std::pair<std::int32_t, double>>> item_area(items.size());
   parallel_for_items(items.size(), 4, workers, {}, [&](Worker& w, std::size_t j) {
     const RefineItem& item = items[j];
     const std::uint8_t want = item.region < thin_count ? kThin : kThick;
-    const Geometry& geo = scene.geometry(item.geom);
+    const SolidTopo& topology = topo[topo_of[item.geom]];
+    const Geometry& geo = *topology.geo;
     const Tri& tri = geo.triangles[item.tri];
     if (geo.degenerate[item.tri]) return;
     const Vec3d inward = face_normal(geo, item.tri) * -1.0;
     if (inward == Vec3d{}) return;
-    auto flagged = [&](Vec3d a, Vec3d b, Vec3d c) {
-      const Vec3d m = (a + b + c) * (1.0 / 3.0);
-      return flag_of(ray_exit_distance(w.it, item.geom, m, inward, opts.max_distance, tie)) == want;
+    const std::int32_t own = region_on(topology, item.tri, want);
+    auto& out = item_area[j];
+    auto add = [&](const Sub& k, double t) {
+      std::int32_t r = own;
+      if (r < 0) {
+        const Vec3d exit = (k.a + k.b + k.c) * (1.0 / 3.0) + inward * t;
+        const std::uint32_t at = nearest_triangle(bvh, item.geom, exit, start, limit, w.stack);
+        if (at != kInvalidId) r = region_on(topology, at, want);
+      }
+      if (r < 0) r = std::int32_t(item.region);
+      const double a = tri_area(k.a, k.b, k.c);
+      auto it = std::find_if(out.begin(), out.end(), [&](const auto& e) { return e.first == r; });
+      if (it == out.end()) out.emplace_back(r, a);
+      else it->second += a;
     };
     std::size_t rays = 0;
-    double area = 0;
     w.subs.clear();
     w.subs.push_back({geo.vertices[tri[0]], geo.vertices[tri[1]], geo.vertices[tri[2]], 0});
     while (!w.subs.empty()) {
@@ -331,8 +357,13 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
       const Vec3d ab = (s.a + s.b) * 0.5, bc = (s.b + s.c) * 0.5, ca = (s.c + s.a) * 0.5;
       const std::array<Sub, 4> kids{Sub{s.a, ab, ca, s.depth + 1}, Sub{ab, s.b, bc, s.depth + 1},
                                     Sub{ca, bc, s.c, s.depth + 1}, Sub{ab, bc, ca, s.depth + 1}};
+      std::array<double, 4> t{};
       std::array<bool, 4> f{};
-      for (int q = 0; q < 4; ++q) f[std::size_t(q)] = flagged(kids[std::size_t(q)].a, kids[std::size_t(q)].b, kids[std::size_t(q)].c);
+      for (std::size_t q = 0; q < 4; ++q) {
+        const Vec3d m = (kids[q].a + kids[q].b + kids[q].c) * (1.0 / 3.0);
+        t[q] = ray_exit_distance(w.it, item.geom, m, inward, opts.max_distance, tie);
+        f[q] = flag_of(t[q]) == want;
+      }
       rays += 4;
       const bool mixed = !(f[0] == f[1] && f[1] == f[2] && f[2] == f[3]);
       const double edge = longest_edge(s.a, s.b, s.c);
@@ -341,17 +372,17 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
         for (const Sub& k : kids) w.subs.push_back(k);
         continue;
       }
-      for (int q = 0; q < 4; ++q)
-        if (f[std::size_t(q)]) area += tri_area(kids[std::size_t(q)].a, kids[std::size_t(q)].b, kids[std::size_t(q)].c);
+      for (std::size_t q = 0; q < 4; ++q)
+        if (f[q]) add(kids[q], t[q]);
     }
-    item_area[j] = area;
   });
-  for (std::size_t j = 0; j < items.size(); ++j) {
-    if (!(item_area[j] > 0)) continue;
-    ThicknessRegion& reg = regions[items[j].region];
-    reg.area += item_area[j];
-    if (opts.exact && opts.exact->covers(items[j].geom)) reg.faces.push_back(opts.exact->face_of(items[j].geom, items[j].tri));
-  }
+  for (std::size_t j = 0; j < items.size(); ++j)
+    for (const auto& [r, a] : item_area[j]) {
+      if (!(a > 0)) continue;
+      ThicknessRegion& reg = regions[std::size_t(r)];
+      reg.area += a;
+      if (opts.exact && opts.exact->covers(items[j].geom)) reg.faces.push_back(opts.exact->face_of(items[j].geom, items[j].tri));
+    }
   for (ThicknessRegion& reg : regions) {
     std::sort(reg.faces.begin(), reg.faces.end());
     reg.faces.erase(std::unique(reg.faces.begin(), reg.faces.end()), reg.faces.end());

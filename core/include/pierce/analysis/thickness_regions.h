@@ -14,8 +14,10 @@
 //    one-ring neighbours are subdivided (4-way, at edge midpoints) where the flag of the
 //    sub-triangles' centroids changes, each centroid traced like a ray sample along its
 //    triangle's inward normal (ray_exit_distance, on the mesh), and the flagged sub-triangles'
-//    areas summed; a triangle whose samples and neighbours' samples all lie in the region counts
-//    whole. Refinement feeds the area only: the per-sample results are those of the samples.
+//    areas summed, each for the region of its triangle's samples, else of the samples where its
+//    ray exits (so a coarse face under two floors gives each its share); a triangle whose samples
+//    and neighbours' samples all lie in the region counts whole. Refinement feeds the area only:
+//    the per-sample results are those of the samples.
 #include <cstdint>
 #include <vector>
 
