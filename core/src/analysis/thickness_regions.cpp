@@ -233,9 +233,9 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
     if (flag[i] != 0) res.region[i] = id_of_root[uf.find(i)];
 
   // Area. Each region's triangles (holding its samples or exits) and their one-ring; a triangle
-  // belongs to the first region (in id order) of its class that reaches it, so no area counts
-  // twice. A triangle whose own and neighbours' samples are all in the region counts whole; the
-  // others are refined.
+  // is taken by the first region (in id order) of its class that reaches it, so none counts
+  // twice. One whose own and neighbours' samples are all in that region counts whole for it; the
+  // others are refined once, their flagged area shared out among the regions below.
   std::vector<std::vector<std::int32_t>> owner(2);  // per class: per (topo, triangle), by offset
   std::vector<std::size_t> tri_base(topo.size() + 1, 0);
   for (std::size_t k = 0; k < topo.size(); ++k) tri_base[k + 1] = tri_base[k] + topo[k].geo->triangles.size();

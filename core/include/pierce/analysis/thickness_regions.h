@@ -16,8 +16,9 @@
 //    triangle's inward normal (ray_exit_distance, on the mesh), and the flagged sub-triangles'
 //    areas summed, each for the region of its triangle's samples, else of the samples where its
 //    ray exits (so a coarse face under two floors gives each its share); a triangle whose samples
-//    and neighbours' samples all lie in the region counts whole. Refinement feeds the area only:
-//    the per-sample results are those of the samples.
+//    all lie in the region (per vertex its corners; per face itself and the triangles around its
+//    corners) counts whole. Refinement feeds the area only: the per-sample results are those of
+//    the samples.
 #include <cstdint>
 #include <vector>
 
