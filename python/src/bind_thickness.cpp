@@ -118,6 +118,13 @@ void bind_thickness(pyb::module_& m) {
       .def_readonly("solid", &ThicknessRegion::solid, "geometry id")
       .def_readonly("thickness", &ThicknessRegion::thickness,
                     "the extreme thickness: minimum of a thin region, maximum of a thick one")
+      .def_readonly("thick", &ThicknessRegion::thick, "a thick region (else a thin one)")
+      .def_property_readonly(
+          "min_thickness", [](const ThicknessRegion& g) { return g.thick ? pyb::object(pyb::none()) : pyb::float_(g.thickness); },
+          "a thin region's minimum thickness (None for a thick region)")
+      .def_property_readonly(
+          "max_thickness", [](const ThicknessRegion& g) { return g.thick ? pyb::object(pyb::float_(g.thickness)) : pyb::none(); },
+          "a thick region's maximum thickness (None for a thin region)")
       .def_property_readonly("point", [](const ThicknessRegion& g) { return std::vector<double>{g.point.x, g.point.y, g.point.z}; },
                              "[x, y, z] of the extreme sample")
       .def_property_readonly("exit", [](const ThicknessRegion& g) { return std::vector<double>{g.exit.x, g.exit.y, g.exit.z}; },

@@ -44,6 +44,7 @@ void check_ids(const ThicknessResult& r, const ThicknessOptions& o) {
     EXPECT_EQ(is_thin, std::size_t(id) < thin) << "sample " << i;
     const ThicknessRegion& reg = is_thin ? r.thin_regions[std::size_t(id)] : r.thick_regions[std::size_t(id) - thin];
     EXPECT_EQ(reg.solid, r.solid[i]);
+    EXPECT_EQ(reg.thick, is_thick);
     if (is_thin) {
       EXPECT_GE(t, reg.thickness);
     } else {

@@ -89,12 +89,18 @@ class ThicknessTest(unittest.TestCase):
         thin, thick = r.thin_regions[0], r.thick_regions[0]
         self.assertEqual(thin.solid, 0)
         self.assertAlmostEqual(thin.thickness, 1.0, delta=1e-12)
+        self.assertEqual(thin.min_thickness, thin.thickness)
+        self.assertIsNone(thin.max_thickness)
+        self.assertFalse(thin.thick)
         self.assertAlmostEqual(thin.area, 200.0, delta=20.0)
         self.assertEqual(thin.area_sides, "both")
         self.assertEqual(thin.samples, 4)
         self.assertAlmostEqual(abs(thin.point[2] - thin.exit[2]), 1.0, delta=1e-12)
         self.assertEqual(thin.faces, [])
         self.assertAlmostEqual(thick.thickness, 10.0, delta=1e-11)
+        self.assertEqual(thick.max_thickness, thick.thickness)
+        self.assertIsNone(thick.min_thickness)
+        self.assertTrue(thick.thick)
         self.assertAlmostEqual(thick.area, 40.0, delta=4.0)
         self.assertEqual(thick.samples, 8)
         # Exactly the threshold is not thin; nothing flagged without thresholds.

@@ -222,6 +222,7 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
     const Found& f = found[r];
     ThicknessRegion& reg = regions[r];
     reg.solid = res.solid[f.extreme];
+    reg.thick = flag[f.extreme] == kThick;
     reg.thickness = res.thickness[f.extreme];
     reg.point = res.point[f.extreme];
     reg.exit = exit_of(f.extreme);

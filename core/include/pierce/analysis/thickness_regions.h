@@ -28,6 +28,7 @@ namespace pierce::analysis {
 
 struct ThicknessRegion {
   std::uint32_t solid = 0;  // geometry id
+  bool thick = false;       // a thick region (thickness above max_thickness), else a thin one
   double thickness = 0;     // the region's extreme: minimum (thin) or maximum (thick) thickness
   Vec3d point;              // the sample point of that extreme sample
   Vec3d exit;               // where its ray leaves: point - normal * thickness
