@@ -41,6 +41,7 @@ struct ThicknessCli {
   std::string method = "ray", per = "vertex", kernel{kernel_name(kDefaultKernel)};
   std::string origin_offsets = "auto", offset_set = "center";
   double min_thickness = 0;
+  double max_thickness = std::numeric_limits<double>::infinity();
   double max_distance = std::numeric_limits<double>::infinity();
   int cone_rays = 30;
   double cone_angle = 120;
@@ -169,13 +170,13 @@ AtPoints read_at_points(const std::string& path, const Scene& scene) {
 }
 
 void write_csv(std::FILE* f, const Scene& scene, const ThicknessResult& r) {
-  std::fputs("id,solid,element,x,y,z,thickness,thin,status,name\n", f);
+  std::fputs("id,solid,element,x,y,z,thickness,thin,status,name,region\n", f);
   for (std::size_t i = 0; i < r.size(); ++i) {
     const Vec3d p = r.point[i];
-    std::fprintf(f, "%zu,%u,%u,%s,%s,%s,%s,%d,%s,%s\n", i, r.solid[i], r.element[i], exact_number(p.x).c_str(),
+    std::fprintf(f, "%zu,%u,%u,%s,%s,%s,%s,%d,%s,%s,%d\n", i, r.solid[i], r.element[i], exact_number(p.x).c_str(),
                  exact_number(p.y).c_str(), exact_number(p.z).c_str(), exact_number(r.thickness[i]).c_str(),
                  int(r.thin[i]), std::string(analysis::status_name(r.status[i])).c_str(),
-                 csv_field(scene.geometry(r.solid[i]).name).c_str());
+                 csv_field(scene.geometry(r.solid[i]).name).c_str(), int(r.region[i]));
   }
 }
 
@@ -200,6 +201,21 @@ nlohmann::ordered_json solid_stats_json(const analysis::SolidThickness& s, const
   return j;
 }
 
+// The regions as JSON (thickness_regions.h): the extreme thickness under `extreme`.
+nlohmann::ordered_json regions_json(const std::vector<analysis::ThicknessRegion>& regions, const char* extreme) {
+  nlohmann::ordered_json a = nlohmann::ordered_json::array();
+  for (const analysis::ThicknessRegion& g : regions)
+    a.push_back({{"solid", g.solid},
+                 {extreme, g.thickness},
+                 {"area", g.area},
+                 {"area_sides", "both"},
+                 {"point", json_point(g.point)},
+                 {"exit", json_point(g.exit)},
+                 {"samples", g.samples},
+                 {"faces", g.faces}});
+  return a;
+}
+
 void write_json(std::FILE* f, const Scene& scene, const ThicknessResult& r, const ThicknessCli& o,
                 const analysis::ThicknessOptions& opts) {
   nlohmann::ordered_json j;
@@ -207,6 +223,7 @@ void write_json(std::FILE* f, const Scene& scene, const ThicknessResult& r, cons
   j["method"] = o.method;
   j["per"] = o.at.empty() ? o.per : "point";
   j["min_thickness"] = opts.min_thickness;
+  if (std::isfinite(opts.max_thickness)) j["max_thickness"] = opts.max_thickness;
   if (std::isfinite(opts.max_distance)) j["max_distance"] = opts.max_distance;
   j["kernel"] = o.kernel;
   j["solids"] = nlohmann::ordered_json::array();
@@ -219,8 +236,11 @@ void write_json(std::FILE* f, const Scene& scene, const ThicknessResult& r, cons
     e["thin"] = bool(r.thin[i]);
     e["status"] = analysis::status_name(r.status[i]);
     if (!r.brep_faces.empty()) e["brep_faces"] = r.brep_faces[i];  // CAD: faces sampled, smallest kept
+    e["region"] = r.region[i];
     el.push_back(std::move(e));
   }
+  j["thin_regions"] = regions_json(r.thin_regions, "min_thickness");
+  j["thick_regions"] = regions_json(r.thick_regions, "max_thickness");
   write_json_document(f, j);
 }
 
@@ -245,6 +265,7 @@ void write_vtp_result(std::FILE* f, const Scene& scene, const ThicknessResult& r
   target.emplace_back("Thickness", r.thickness);
   target.emplace_back("Thin", r.thin);
   target.emplace_back("Status", std::move(status));
+  target.emplace_back("Region", r.region);  // -1: none; see ThicknessResult::region
   if (!r.brep_faces.empty()) target.emplace_back("BrepFaces", r.brep_faces);  // CAD: faces sampled per element
   d.point_data.emplace_back("SolidId", std::move(point_solid));
   d.cell_data.emplace_back("SolidId", std::move(cell_solid));
@@ -279,6 +300,23 @@ void print_summary(const Scene& scene, const ThicknessResult& r, const analysis:
                 s.summary.max, s.summary.mean);
     if (opts.min_thickness > 0) std::printf("  thin (< %g): %zu\n", opts.min_thickness, s.thin);
   }
+}
+
+// The ten thinnest regions as a table, and how many regions there are.
+void print_regions(const Scene& scene, const ThicknessResult& r, const analysis::ThicknessOptions& opts) {
+  if (opts.min_thickness > 0) {
+    std::printf("thin regions (thickness < %g): %zu%s\n", opts.min_thickness, r.thin_regions.size(),
+                r.thin_regions.size() > 10 ? ", the ten thinnest:" : "");
+    if (!r.thin_regions.empty())
+      std::printf("  %6s  %-20s %12s %12s %8s  %s\n", "region", "solid", "min", "area (both)", "samples", "point");
+    for (std::size_t k = 0; k < std::min<std::size_t>(10, r.thin_regions.size()); ++k) {
+      const analysis::ThicknessRegion& g = r.thin_regions[k];
+      std::printf("  %6zu  %-20s %12g %12g %8zu  %g %g %g\n", k, solid_label(scene, g.solid).c_str(), g.thickness,
+                  g.area, g.samples, g.point.x, g.point.y, g.point.z);
+    }
+  }
+  if (std::isfinite(opts.max_thickness))
+    std::printf("thick regions (thickness > %g): %zu\n", opts.max_thickness, r.thick_regions.size());
 }
 
 // The thickness per vertex or face of each sampled solid (NaN elsewhere), thin elements marked.
@@ -333,6 +371,9 @@ int run_thickness(const ThicknessCli& o) {
   opts.method = parse_enum_or_throw<ThicknessMethod>(o.method);
   opts.per = parse_enum_or_throw<SampleAt>(o.per);
   opts.min_thickness = o.min_thickness;
+  opts.max_thickness = o.max_thickness;
+  if (o.min_thickness > 0 && o.max_thickness < o.min_thickness)
+    throw InputError("--max must not be below --min (a sample cannot be both thin and thick)");
   opts.max_distance = o.max_distance;
   opts.cone_rays = o.cone_rays;
   opts.cone_angle_deg = o.cone_angle;
@@ -353,6 +394,7 @@ int run_thickness(const ThicknessCli& o) {
   if (!r.completed || interrupted()) return cancelled();
 
   print_summary(scene, r, opts);
+  if (o.at.empty()) print_regions(scene, r, opts);
   std::fflush(stdout);
   if (!o.png.empty() && !write_png(accel, r, o)) return cancelled();
   std::fflush(stdout);
@@ -379,7 +421,13 @@ std::function<int()> register_thickness(CLI::App& app) {
   cmd->add_option("--per", o->per, "Sample at every vertex or every face (triangle centroid)")
       ->check(CLI::IsMember(enum_names<SampleAt>()))
       ->capture_default_str();
-  cmd->add_option("--min", o->min_thickness, "Thin flag: thickness below this")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--min", o->min_thickness,
+                  "Thin: thickness strictly below T (a wall of exactly T is not thin); thin samples connected on a "
+                  "solid's surface, both sides of a wall, are reported as regions")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--max", o->max_thickness,
+                  "Thick: thickness strictly above T2; thick samples are reported as regions like thin ones")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--max-distance", o->max_distance, "Search no farther; beyond it: no thickness (status no_exit)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--cone-rays", o->cone_rays, "Cone method: rays per sample")->check(CLI::Range(1, 10000))->capture_default_str();

@@ -100,6 +100,16 @@ class ThicknessRun:
     color_range: tuple  # (lo, hi) of the legend
     warnings: list
     group: object = None  # the document group of the result objects, once created
+    # Thin walls as findings (pierce.ThicknessRegion, thinnest first): samples strictly below the
+    # threshold connected on a solid's surface and across the wall; area on both sides.
+    thin_regions: list = None
+
+    def region_label(self, region):
+        """The label of the solid a region lies on."""
+        for s in self.solids:
+            if s.meshed.geom == region.solid:
+                return s.label
+        return "#%d" % region.solid
 
     def summary(self):
         o = self.options
@@ -123,6 +133,12 @@ class ThicknessRun:
             if tessellation:
                 line += "; %d excluded as tessellation artefacts (status tessellation)" % tessellation
             lines.append(line)
+        if o.threshold > 0 and self.thin_regions is not None:
+            lines.append("%d thin region(s) (thickness < %.4g; area both sides)%s" % (
+                len(self.thin_regions), o.threshold, ", the ten thinnest:" if len(self.thin_regions) > 10 else ""))
+            for k, g in enumerate(self.thin_regions[:10]):
+                lines.append("  region %d: '%s' min %.4g, area %.4g, %d samples, at (%.4g, %.4g, %.4g)" % (
+                    k, self.region_label(g), g.thickness, g.area, g.samples, *g.point))
         for w in self.warnings:
             lines.append("Pierce: warning: " + w)
         return "\n".join(lines)
@@ -152,7 +168,7 @@ def compute(objects, options, progress=None, cancel=None):
     hi = options.color_max if options.color_max is not None else (float(valid.max()) if len(valid) else 1.0)
     if not hi > lo:
         hi = lo + max(abs(lo) * 1e-3, 1e-9)  # a uniform wall: any non-empty range shows one colour
-    return ThicknessRun(options, model, solids, (lo, hi), warnings + model.warnings)
+    return ThicknessRun(options, model, solids, (lo, hi), warnings + model.warnings, thin_regions=list(res.thin_regions))
 
 
 def create_objects(doc, run):

@@ -15,7 +15,7 @@ namespace {
 using namespace pierce::analysis;
 
 ThicknessOptions make_options(const PyScene& s, const std::string& method, const std::string& per,
-                              double max_distance, double min_thickness, int cone_rays, double cone_angle,
+                              double max_distance, double min_thickness, double max_thickness, int cone_rays, double cone_angle,
                               const std::string& cone_aggregate, int sphere_max_iterations, double tie_tolerance_rel,
                               const std::string& kernel, std::vector<std::uint32_t> solids,
                               const std::optional<std::vector<double>>& percentiles, int histogram_bins) {
@@ -24,6 +24,7 @@ ThicknessOptions make_options(const PyScene& s, const std::string& method, const
   o.per = parse_enum_or_throw<SampleAt>(per);
   o.max_distance = max_distance;
   o.min_thickness = min_thickness;
+  o.max_thickness = max_thickness;
   o.cone_rays = cone_rays;
   o.cone_angle_deg = cone_angle;
   o.cone_aggregate = parse_enum_or_throw<ConeAggregate>(cone_aggregate);
@@ -111,6 +112,32 @@ void bind_thickness(pyb::module_& m) {
                std::to_string(s.summary.min) + ">";
       });
 
+  pyb::class_<ThicknessRegion>(m, "ThicknessRegion",
+                                "A thin or thick wall: samples of one solid connected on its surface, both sides "
+                                "of the wall (see docs/THICKNESS.md, Regions).")
+      .def_readonly("solid", &ThicknessRegion::solid, "geometry id")
+      .def_readonly("thickness", &ThicknessRegion::thickness,
+                    "the extreme thickness: minimum of a thin region, maximum of a thick one")
+      .def_readonly("thick", &ThicknessRegion::thick, "a thick region (else a thin one)")
+      .def_property_readonly(
+          "min_thickness", [](const ThicknessRegion& g) { return g.thick ? pyb::object(pyb::none()) : pyb::float_(g.thickness); },
+          "a thin region's minimum thickness (None for a thick region)")
+      .def_property_readonly(
+          "max_thickness", [](const ThicknessRegion& g) { return g.thick ? pyb::object(pyb::float_(g.thickness)) : pyb::none(); },
+          "a thick region's maximum thickness (None for a thin region)")
+      .def_property_readonly("point", [](const ThicknessRegion& g) { return std::vector<double>{g.point.x, g.point.y, g.point.z}; },
+                             "[x, y, z] of the extreme sample")
+      .def_property_readonly("exit", [](const ThicknessRegion& g) { return std::vector<double>{g.exit.x, g.exit.y, g.exit.z}; },
+                             "[x, y, z] where that sample's ray leaves the solid")
+      .def_readonly("area", &ThicknessRegion::area, "flagged surface area, both sides of the wall")
+      .def_property_readonly("area_sides", [](const ThicknessRegion&) { return "both"; })
+      .def_readonly("samples", &ThicknessRegion::samples, "samples in the region")
+      .def_readonly("faces", &ThicknessRegion::faces, "CAD: B-rep face indices holding its area; empty for meshes")
+      .def("__repr__", [](const ThicknessRegion& g) {
+        return "<pierce.ThicknessRegion solid " + std::to_string(g.solid) + " thickness " + std::to_string(g.thickness) +
+               " area " + std::to_string(g.area) + " samples " + std::to_string(g.samples) + ">";
+      });
+
   // Arrays are read-only views into the result (kept alive by them).
   pyb::class_<ThicknessResult>(m, "ThicknessResult",
                                "One entry per sampled element, solid by solid; element = vertex or triangle "
@@ -139,6 +166,13 @@ void bind_thickness(pyb::module_& m) {
         static_assert(sizeof(ThicknessStatus) == sizeof(std::uint8_t));
         return readonly_view(reinterpret_cast<const std::uint8_t*>(r.status.data()), r.status.size(), 0, self);
       }, "(N,) uint8: 0 ok, 1 no_exit, 2 no_normal, 3 tessellation (see THICKNESS_STATUS)")
+      .def_property_readonly("region", readonly_column(&ThicknessResult::region),
+                             "(N,) int32 region id, -1 for none: below len(thin_regions) an index into thin_regions, "
+                             "else into thick_regions after subtracting len(thin_regions)")
+      .def_readonly("thin_regions", &ThicknessResult::thin_regions,
+                    "ThicknessRegion list, thinnest first (thickness strictly below min_thickness)")
+      .def_readonly("thick_regions", &ThicknessResult::thick_regions,
+                    "ThicknessRegion list, thickest first (thickness strictly above max_thickness)")
       .def_property_readonly("brep_faces", readonly_column(&ThicknessResult::brep_faces),
                              "(N,) uint8 CAD: B-rep faces sampled at the element (2+: a vertex on an edge, the "
                              "smallest kept); empty for meshes")
@@ -160,11 +194,11 @@ void bind_thickness(pyb::module_& m) {
   m.def(
       "thickness",
       [](PyScene& s, const std::string& method, const std::string& per, double max_distance, double min_thickness,
-         int cone_rays, double cone_angle, const std::string& cone_aggregate, int sphere_max_iterations,
+         double max_thickness, int cone_rays, double cone_angle, const std::string& cone_aggregate, int sphere_max_iterations,
          double tie_tolerance_rel, const std::string& kernel, std::vector<std::uint32_t> solids,
          std::optional<std::vector<double>> percentiles, int histogram_bins, const pyb::object& progress,
          CancelToken* cancel) {
-        const ThicknessOptions o = make_options(s, method, per, max_distance, min_thickness, cone_rays, cone_angle,
+        const ThicknessOptions o = make_options(s, method, per, max_distance, min_thickness, max_thickness, cone_rays, cone_angle,
                                                 cone_aggregate, sphere_max_iterations, tie_tolerance_rel, kernel,
                                                 std::move(solids), percentiles, histogram_bins);
         return run_analysis(s, progress, cancel, 0,
@@ -172,7 +206,7 @@ void bind_thickness(pyb::module_& m) {
       },
       pyb::arg("scene"), pyb::kw_only(), pyb::arg("method") = "ray", pyb::arg("per") = "vertex",
       pyb::arg("max_distance") = std::numeric_limits<double>::infinity(), pyb::arg("min_thickness") = 0.0,
-      pyb::arg("cone_rays") = 30, pyb::arg("cone_angle") = 120.0, pyb::arg("cone_aggregate") = "shapira",
+      pyb::arg("max_thickness") = std::numeric_limits<double>::infinity(), pyb::arg("cone_rays") = 30, pyb::arg("cone_angle") = 120.0, pyb::arg("cone_aggregate") = "shapira",
       pyb::arg("sphere_max_iterations") = 100, pyb::arg("tie_tolerance_rel") = 1e-6, pyb::arg("kernel") = default_kernel_name(),
       pyb::arg("solids") = std::vector<std::uint32_t>{}, pyb::arg("percentiles") = pyb::none(),
       pyb::arg("histogram_bins") = 20, pyb::arg("progress") = pyb::none(), pyb::arg("cancel") = nullptr,
@@ -181,7 +215,9 @@ void bind_thickness(pyb::module_& m) {
       "(shape-diameter function over cone_rays rays in a cone_angle-degree cone) or sphere (largest inscribed\n"
       "ball). Elements whose ray escapes (open mesh, beyond max_distance) get NaN, status no_exit.\n"
       "CAD files (add_model_files) are sampled on the exact B-rep with exits refined on it; tessellation\n"
-      "artefacts get NaN, status tessellation, and are left out of the statistics (SolidThickness.tessellation).");
+      "artefacts get NaN, status tessellation, and are left out of the statistics (SolidThickness.tessellation).\n"
+      "With min_thickness > 0 (thin: strictly below it) or a finite max_thickness (thick: strictly above it),\n"
+      "flagged samples are grouped into regions (thin_regions, thick_regions, region).");
 
   m.def(
       "thickness_at",
@@ -203,7 +239,8 @@ void bind_thickness(pyb::module_& m) {
         const std::vector<std::uint32_t> geom = geometry_ids(s, solids, n, "solids", [](std::size_t i, std::int64_t v) {
           return "thickness_at: point " + std::to_string(i) + ": solid " + std::to_string(v) + " is not in the scene";
         });
-        const ThicknessOptions o = make_options(s, method, "face", max_distance, min_thickness, cone_rays, cone_angle,
+        const ThicknessOptions o = make_options(s, method, "face", max_distance, min_thickness,
+                                                std::numeric_limits<double>::infinity(), cone_rays, cone_angle,
                                                 cone_aggregate, sphere_max_iterations, tie_tolerance_rel, kernel, {},
                                                 percentiles, histogram_bins);
         return run_analysis(s, progress, cancel, 0,

@@ -45,7 +45,7 @@ PYEOF
 
 # The bent sheet: every face sample on the two big faces reads the 0.5 wall, B-rep true.
 run "thickness sheet" "$PIERCE" thickness "$SHEET" --per face -o "$WORK/s.csv"
-head -n 1 "$WORK/s.csv" | grep -qx "id,solid,element,x,y,z,thickness,thin,status,name" || fail "thickness csv header"
+head -n 1 "$WORK/s.csv" | grep -qx "id,solid,element,x,y,z,thickness,thin,status,name,region" || fail "thickness csv header"
 grep -q "sampled on the exact B-rep" "$WORK/stdout" || fail "thickness: says it sampled the B-rep"
 
 # Per vertex: a vertex on an edge between B-rep faces is sampled per face, the smallest kept, and

@@ -6,12 +6,16 @@
 // `tessellation` status and left out of the statistics.
 #include <gtest/gtest.h>
 
+#include <BRepAlgoAPI_Cut.hxx>
 #include <BRepBndLib.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
 #include <Bnd_Box.hxx>
 #include <IntCurvesFace_ShapeIntersector.hxx>
 #include <gp_Lin.hxx>
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <filesystem>
 #include <limits>
 #include <unistd.h>
@@ -322,6 +326,38 @@ TEST(CadExact, BentSheetWallIsHalfAMillimetreEverywhere) {
     EXPECT_NEAR(r.thickness[i], 0.5, 1e-6 * 17) << "sample " << i;
   }
   EXPECT_GT(on_wall, 40u);
+}
+
+// Thin regions on CAD input: a 40 x 30 x 10 block with two 8 x 6 pockets leaving floors of 0.5
+// and 1.0 (thin under 1.5). Each floor is one region with its exact minimum and the area of both
+// sides, covering two B-rep faces: its pocket's floor and the block's bottom, shared by both.
+TEST(CadExact, PocketFloorsAreRegionsWithTheirFaces) {
+  TopoDS_Shape block = BRepPrimAPI_MakeBox(40, 30, 10).Shape();
+  block = BRepAlgoAPI_Cut(block, BRepPrimAPI_MakeBox(gp_Pnt(4, 4, 0.5), gp_Pnt(12, 10, 11)).Shape()).Shape();
+  block = BRepAlgoAPI_Cut(block, BRepPrimAPI_MakeBox(gp_Pnt(16, 4, 1.0), gp_Pnt(24, 10, 11)).Shape()).Shape();
+  const auto l = load(block, "pocket_block");
+  for (SampleAt per : {SampleAt::face, SampleAt::vertex}) {
+    ThicknessOptions o;
+    o.per = per;
+    o.min_thickness = 1.5;
+    o.exact = l->exact.get();
+    const ThicknessResult r = compute_thickness(Accel(l->scene), o);
+    ASSERT_EQ(r.thin_regions.size(), 2u) << "per " << enum_name(per);
+    const double floors[2] = {0.5, 1.0}, x0[2] = {4, 16};
+    for (int k = 0; k < 2; ++k) {
+      const ThicknessRegion& g = r.thin_regions[std::size_t(k)];
+      EXPECT_NEAR(g.thickness, floors[k], 1e-9 * floors[k]) << "per " << enum_name(per);
+      EXPECT_GE(g.point.x, x0[k] - 1e-9);
+      EXPECT_LE(g.point.x, x0[k] + 8 + 1e-9);
+      EXPECT_NEAR(g.area, 96, 9.6) << "per " << enum_name(per);
+      EXPECT_EQ(g.faces.size(), 2u) << "per " << enum_name(per);
+    }
+    // The bottom face is in both; the floors differ.
+    std::vector<std::uint32_t> shared;
+    std::set_intersection(r.thin_regions[0].faces.begin(), r.thin_regions[0].faces.end(),
+                          r.thin_regions[1].faces.begin(), r.thin_regions[1].faces.end(), std::back_inserter(shared));
+    EXPECT_EQ(shared.size(), 1u) << "per " << enum_name(per);
+  }
 }
 
 // Without the B-rep (a mesh of the same solid), the mesh's chords make the wall differ from 0.5

@@ -60,6 +60,14 @@ def body(c):
     c.check(len(m.triangles) > 12, "long edges were split (%d triangles)" % len(m.triangles))
     c.check(s.thin_count == x_facing, "narrow box: the %d x-facing triangles are thin below 5 mm (got %d)"
             % (x_facing, s.thin_count))
+    # The x-facing walls are one thin region, both sides: 4 thick, 2 x 100 mm^2.
+    c.check(len(run.thin_regions) == 1, "narrow box: one thin region (got %d)" % len(run.thin_regions))
+    if run.thin_regions:
+        g = run.thin_regions[0]
+        c.near(g.thickness, 4.0, 1e-9 * 4, "narrow box: thin region minimum")
+        c.near(g.area, 200.0, 20.0, "narrow box: thin region area, both sides")
+        c.check(run.region_label(g) == "Narrow", "thin region names its solid: " + run.region_label(g))
+    c.check("1 thin region(s) (thickness < 5" in run.summary(), "summary lists the regions: " + run.summary())
     colours = {tuple(round(x, 3) for x in col[:3]) for col in s.result_object.ThicknessColors}
     c.check((1.0, 0.0, 1.0) in colours, "thin triangles are magenta (colours %s)" % sorted(colours))
 

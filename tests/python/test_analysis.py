@@ -74,6 +74,42 @@ class ThicknessTest(unittest.TestCase):
         self.assertFalse(r.thickness.flags.writeable)
         self.assertEqual(r.point.shape, (12, 3))
 
+    def test_thin_and_thick_regions(self):
+        # A 10 x 10 x 1 plate: the top and bottom (1 thick) are one thin region, both sides; the
+        # four sides (10 across) one thick region.
+        s = scene_of(gen.box((0, 0, 0), (10, 10, 1)))
+        r = pierce.thickness(s, per="face", min_thickness=2.0, max_thickness=5.0)
+        self.assertEqual(r.region.dtype, np.int32)
+        self.assertFalse(r.region.flags.writeable)
+        self.assertEqual(len(r.thin_regions), 1)
+        self.assertEqual(len(r.thick_regions), 1)
+        z = np.abs(r.normal[:, 2]) > 0.99
+        self.assertTrue(np.all(r.region[z] == 0))
+        self.assertTrue(np.all(r.region[~z] == 1))
+        thin, thick = r.thin_regions[0], r.thick_regions[0]
+        self.assertEqual(thin.solid, 0)
+        self.assertAlmostEqual(thin.thickness, 1.0, delta=1e-12)
+        self.assertEqual(thin.min_thickness, thin.thickness)
+        self.assertIsNone(thin.max_thickness)
+        self.assertFalse(thin.thick)
+        self.assertAlmostEqual(thin.area, 200.0, delta=20.0)
+        self.assertEqual(thin.area_sides, "both")
+        self.assertEqual(thin.samples, 4)
+        self.assertAlmostEqual(abs(thin.point[2] - thin.exit[2]), 1.0, delta=1e-12)
+        self.assertEqual(thin.faces, [])
+        self.assertAlmostEqual(thick.thickness, 10.0, delta=1e-11)
+        self.assertEqual(thick.max_thickness, thick.thickness)
+        self.assertIsNone(thick.min_thickness)
+        self.assertTrue(thick.thick)
+        self.assertAlmostEqual(thick.area, 40.0, delta=4.0)
+        self.assertEqual(thick.samples, 8)
+        # Exactly the threshold is not thin; nothing flagged without thresholds.
+        self.assertEqual(len(pierce.thickness(s, per="face", min_thickness=1.0).thin_regions), 0)
+        r0 = pierce.thickness(s, per="face")
+        self.assertTrue(np.all(r0.region == -1))
+        with self.assertRaises(ValueError):
+            pierce.thickness(s, min_thickness=2.0, max_thickness=1.0)
+
     def test_only_selected_solids_are_sampled(self):
         s = scene_of(gen.box((0, 0, 0), (1, 1, 1)), gen.box((5, 0, 0), (6, 1, 1)))
         r = pierce.thickness(s, solids=[1])

@@ -95,6 +95,11 @@ TEST(VtkThickness, MinThicknessFlagsThinCells) {
     thin_cells += thin->GetTuple1(c) == 1.0;
   }
   EXPECT_EQ(thin_cells, 4);  // the two x faces
+  // Both x faces are one thin region (id 0), across the wall; the others none.
+  vtkDataArray* region = out->GetCellData()->GetArray("Region");
+  ASSERT_NE(region, nullptr);
+  for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
+    EXPECT_EQ(region->GetTuple1(c), thin->GetTuple1(c) == 1.0 ? 0.0 : -1.0) << "cell " << c;
   vtkTable* stats = f->GetStatisticsOutput();
   ASSERT_NE(stats, nullptr);
   ASSERT_EQ(stats->GetNumberOfRows(), 1);

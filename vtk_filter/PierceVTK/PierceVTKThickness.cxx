@@ -38,6 +38,7 @@ void AttachThickness(const pa::ThicknessResult& result, Surfaces& surfaces) {
     vtkSmartPointer<vtkUnsignedCharArray> thin = vtkSmartPointer<vtkUnsignedCharArray>::New();
     vtkSmartPointer<vtkUnsignedCharArray> status = vtkSmartPointer<vtkUnsignedCharArray>::New();
     vtkSmartPointer<vtkIntArray> solid = vtkSmartPointer<vtkIntArray>::New();
+    vtkSmartPointer<vtkIntArray> region = vtkSmartPointer<vtkIntArray>::New();  // ThicknessResult::region
     vtkSmartPointer<vtkUnsignedCharArray> brep_faces;  // CAD input on its B-rep only
   };
   const bool with_brep_faces = !result.brep_faces.empty();
@@ -50,6 +51,9 @@ void AttachThickness(const pa::ThicknessResult& result, Surfaces& surfaces) {
     a.thin->SetName("Thin");
     a.status->SetName("ThicknessStatus");
     a.solid->SetName("SolidId");
+    a.region->SetName("Region");
+    a.region->SetNumberOfValues(n);
+    a.region->Fill(-1);
     a.thickness->SetNumberOfValues(n);
     a.thin->SetNumberOfValues(n);
     a.status->SetNumberOfValues(n);
@@ -92,6 +96,7 @@ void AttachThickness(const pa::ThicknessResult& result, Surfaces& surfaces) {
     a.thickness->SetValue(e, result.thickness[i]);
     a.thin->SetValue(e, result.thin[i]);
     a.status->SetValue(e, static_cast<unsigned char>(result.status[i]));
+    if (i < result.region.size()) a.region->SetValue(e, result.region[i]);
     if (with_brep_faces) a.brep_faces->SetValue(e, result.brep_faces[i]);
   }
   for (std::size_t g = 0; g < surfaces.solids.size(); ++g) {
@@ -102,6 +107,7 @@ void AttachThickness(const pa::ThicknessResult& result, Surfaces& surfaces) {
     data->AddArray(arrays[g].thin);
     data->AddArray(arrays[g].status);
     data->AddArray(arrays[g].solid);
+    data->AddArray(arrays[g].region);
     if (arrays[g].brep_faces) data->AddArray(arrays[g].brep_faces);
     data->SetActiveScalars("Thickness");
   }
@@ -251,6 +257,8 @@ void ShareVertexResults(const Surfaces& surfaces, const VertexOwners& owners, co
       result.thickness.push_back(all[k + 2]);
       result.status.push_back(static_cast<pa::ThicknessStatus>(int(all[k + 3])));
       result.thin.push_back(static_cast<std::uint8_t>(all[k + 4]));
+      // Regions are found by each process on its own samples: the copied rows have none.
+      if (!result.region.empty()) result.region.push_back(-1);
       if (!result.brep_faces.empty()) result.brep_faces.push_back(static_cast<std::uint8_t>(all[k + 5]));
     }
   }

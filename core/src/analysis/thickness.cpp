@@ -77,6 +77,7 @@ ThicknessResult compute_thickness(const Accel& accel, const ThicknessOptions& op
     return res;
   }
   detail::finish_statistics(accel.scene(), opts, set, res);
+  detail::find_regions(accel, opts, set, res);
   return res;
 }
 
@@ -91,6 +92,7 @@ ThicknessResult thickness_at(const Accel& accel, const std::vector<std::uint32_t
     return res;
   }
   detail::finish_statistics(accel.scene(), opts, set, res);
+  res.region.assign(res.size(), -1);  // regions are a map's findings; points have none
   return res;
 }
 

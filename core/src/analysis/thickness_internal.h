@@ -74,6 +74,10 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
 // Copies, thin flags and the per-solid statistics.
 void finish_statistics(const Scene& scene, const ThicknessOptions& opts, const SampleSet& set, ThicknessResult& res);
 
+// Stage 4 (thickness_regions.cpp): the per-sample region ids and the thin and thick regions of a
+// compute_thickness result (ranges per solid), when a threshold is set; otherwise every id -1.
+void find_regions(const Accel& accel, const ThicknessOptions& opts, const SampleSet& set, ThicknessResult& res);
+
 // Whether geometry g is CAD input for these options, and its folded-triangle flags (empty: none).
 bool is_cad(const ThicknessOptions& opts, std::uint32_t g);
 std::span<const std::uint8_t> folded_flags(const ThicknessOptions& opts, std::uint32_t g);

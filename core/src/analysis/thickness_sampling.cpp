@@ -18,6 +18,9 @@ namespace pierce::analysis::detail {
 void check_options(const Accel& accel, const ThicknessOptions& o) {
   if (!(o.max_distance > 0)) throw std::invalid_argument("thickness: max distance must be positive");
   if (!(o.min_thickness >= 0)) throw std::invalid_argument("thickness: min thickness must be >= 0");
+  if (!(o.max_thickness >= 0)) throw std::invalid_argument("thickness: max thickness must be >= 0");
+  if (o.min_thickness > 0 && o.max_thickness < o.min_thickness)
+    throw std::invalid_argument("thickness: max thickness must not be below min thickness");
   if (o.method == ThicknessMethod::cone) {
     if (o.cone_rays < 1) throw std::invalid_argument("thickness: cone needs at least one ray");
     if (!(o.cone_angle_deg > 0 && o.cone_angle_deg < 180))

@@ -46,6 +46,7 @@
 #include "pierce/analysis/statistics.h"
 #include "pierce/kernel.h"
 #include "pierce/origin_offsets.h"
+#include "pierce/analysis/thickness_regions.h"
 #include "pierce/analysis/tie_distance.h"
 #include "pierce/enum_names.h"
 
@@ -61,7 +62,10 @@ struct ThicknessOptions {
   ThicknessMethod method = ThicknessMethod::ray;
   SampleAt per = SampleAt::vertex;
   double max_distance = std::numeric_limits<double>::infinity();  // search no farther than this
-  double min_thickness = 0;     // thin flag: finite thickness < min_thickness
+  double min_thickness = 0;     // thin flag: finite thickness < min_thickness (strictly)
+  // Thick regions: finite thickness > max_thickness (strictly); infinite: none. Must not be
+  // below min_thickness when both are set, so that no sample is both thin and thick.
+  double max_thickness = std::numeric_limits<double>::infinity();
   int cone_rays = 30;           // cone: rays per sample, including the axis
   double cone_angle_deg = 120;  // cone: full opening angle
   ConeAggregate cone_aggregate = ConeAggregate::shapira;
@@ -130,6 +134,12 @@ struct ThicknessResult {
   // sampled geometry is covered by ThicknessOptions::exact.
   std::vector<std::uint8_t> brep_faces;
   std::vector<SolidThickness> solids;  // per-solid statistics
+  // Regions (thickness_regions.h; compute_thickness only, with a threshold set): thin ones
+  // thinnest first, thick ones thickest first (ties by solid, then point). `region` holds one id
+  // per sample, -1 for none: an id below thin_regions.size() indexes thin_regions, a larger one
+  // indexes thick_regions at id - thin_regions.size().
+  std::vector<std::int32_t> region;
+  std::vector<ThicknessRegion> thin_regions, thick_regions;
   bool completed = true;               // false if cancelled (then the arrays are partial)
 
   std::size_t size() const { return thickness.size(); }
