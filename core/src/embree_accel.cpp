@@ -1,6 +1,6 @@
 #include "pierce/embree_accel.h"
 
-#include "pierce/kernels/embree_query.h"
+#include "pierce/embree_query.h"
 
 #include <cmath>
 #include <memory>

@@ -13,7 +13,7 @@
 
 #include "pierce/embree_accel.h"
 #include "pierce/kernel_options.h"
-#include "pierce/kernels/embree_query.h"
+#include "pierce/embree_query.h"
 
 namespace pierce {
 
