@@ -172,8 +172,8 @@ bool EmbreeNodeCullKernel::next(Hit& out) {
   return true;
 }
 
-EpsilonKernel::EpsilonKernel(const EmbreeAccel& acc, double epsilon_rel, bool count)
-    : scene_(acc.native()), eps_(epsilon_rel * acc.scene().scale()), count_(count) {}
+EpsilonKernel::EpsilonKernel(const EmbreeAccel& acc, const KernelOptions& o)
+    : scene_(acc.native()), eps_(o.epsilon_rel * acc.scene().scale()), count_(o.count) {}
 
 bool embree_first_hit(const EmbreeAccel& acc, const Ray& ray, Hit& out) {
   // `epsilon`'s first query: one place decides which rays Embree can take (a zero direction or a

@@ -49,9 +49,7 @@ class EmbreeExactBase {
 template <EmbreeQuery::Mode M>
 class EmbreeExactKernel : public EmbreeExactBase {
  public:
-  explicit EmbreeExactKernel(const EmbreeAccel& acc, HitOrder order = {}, bool count = false)
-      : EmbreeExactBase(acc, order, M, count) {}
-  EmbreeExactKernel(const EmbreeAccel& acc, const KernelOptions& o) : EmbreeExactKernel(acc, o.order, o.count) {}
+  EmbreeExactKernel(const EmbreeAccel& acc, const KernelOptions& o) : EmbreeExactBase(acc, o.order, M, o.count) {}
 };
 
 class EmbreeRestartKernel : public EmbreeExactKernel<EmbreeQuery::Mode::restart> {
@@ -90,8 +88,7 @@ class EmbreeNodeCullKernel : public EmbreeExactKernel<EmbreeQuery::Mode::closest
 // Embree's float ray made once per ray, as plain Embree code does (the bench compares the two).
 class EpsilonKernel {
  public:
-  explicit EpsilonKernel(const EmbreeAccel& acc, double epsilon_rel = 1e-5, bool count = false);
-  EpsilonKernel(const EmbreeAccel& acc, const KernelOptions& o) : EpsilonKernel(acc, o.epsilon_rel, o.count) {}
+  explicit EpsilonKernel(const EmbreeAccel& acc, const KernelOptions& o = {});
 
   void begin(const Ray& ray, std::size_t /*max_hits*/ = 0) {
     query_ = native_rayhit(ray, float(std::max(0.0, ray.tmin)));
