@@ -1,6 +1,5 @@
 #include "pierce/kernel.h"
 
-#include <tbb/parallel_for_each.h>
 
 #include <algorithm>
 #include <array>
@@ -153,26 +152,45 @@ Counters HitIterator::counters() const {
   return std::visit([](const auto& k) { return k.counters.totals(); }, impl_);
 }
 
+namespace {
+
+// All hits of `ray` (up to max_hits, 0 = all) appended to `out`, the kernel's begin() and next()
+// inlined into one loop.
+template <class Kernel>
+void collect_with(Kernel& k, const Ray& ray, std::size_t max_hits, std::vector<Hit>& out) {
+  // A kernel that gathers its hits (`filter`, `queue`'s gathering pass) puts them in `out`
+  // itself, sorted; only the cut to max_hits is left.
+  if constexpr (requires { k.begin_into(ray, max_hits, out); }) {
+    const std::size_t first = out.size();
+    if (k.begin_into(ray, max_hits, out)) {
+      if (max_hits != 0 && out.size() - first > max_hits) out.resize(first + max_hits);
+      return;
+    }
+  } else {
+    k.begin(ray, max_hits);
+  }
+  Hit h;
+  std::size_t n = 0;
+  while ((max_hits == 0 || n < max_hits) && k.next(h)) {
+    out.push_back(h);
+    ++n;
+  }
+}
+
+}  // namespace
+
 void HitIterator::collect(const Ray& ray, std::size_t max_hits, std::vector<Hit>& out) {
-  // One dispatch per ray, with the kernel's begin() and next() inlined into one loop.
+  std::visit([&](auto& k) { collect_with(k, ray, max_hits, out); }, impl_);
+}
+
+void HitIterator::collect_each(std::span<const Ray> rays, std::size_t max_hits, std::vector<Hit>& out,
+                               std::size_t* counts) {
   std::visit(
       [&](auto& k) {
-        // A kernel that gathers its hits (`filter`, `queue`'s gathering pass) puts them in `out`
-        // itself, sorted; only the cut to max_hits is left.
-        if constexpr (requires { k.begin_into(ray, max_hits, out); }) {
-          const std::size_t first = out.size();
-          if (k.begin_into(ray, max_hits, out)) {
-            if (max_hits != 0 && out.size() - first > max_hits) out.resize(first + max_hits);
-            return;
-          }
-        } else {
-          k.begin(ray, max_hits);
-        }
-        Hit h;
-        std::size_t n = 0;
-        while ((max_hits == 0 || n < max_hits) && k.next(h)) {
-          out.push_back(h);
-          ++n;
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+          const std::size_t before = out.size();
+          collect_with(k, rays[i], max_hits, out);
+          counts[i] = out.size() - before;
         }
       },
       impl_);
@@ -204,23 +222,30 @@ bool trace_batch(const Accel& accel, KernelKind kind, std::span<const Ray> rays,
     if (tracker.stopped()) return;
     Worker& w = workers.local();
     w.chunks.push_back({r.begin(), r.end(), w.hits.size()});
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      const std::size_t before = w.hits.size();
-      w.it.collect(rays[i], max_hits, w.hits);
-      out.offsets[i + 1] = w.hits.size() - before;
-    }
+    w.it.collect_each(rays.subspan(r.begin(), r.size()), max_hits, w.hits, out.offsets.data() + r.begin() + 1);
     tracker.add(r.size());
   });
   for (std::size_t i = 0; i < n; ++i) out.offsets[i + 1] += out.offsets[i];
-  // Pass 2: every chunk is copied to its rays' place.
-  out.hits.resize(out.offsets[n]);
-  tbb::parallel_for_each(workers.begin(), workers.end(), [&](const Worker& w) {
-    for (const Chunk& c : w.chunks) {
-      const auto from = w.hits.begin() + std::ptrdiff_t(c.first_hit);
-      std::copy(from, from + std::ptrdiff_t(out.offsets[c.end_ray] - out.offsets[c.first_ray]),
-                out.hits.begin() + std::ptrdiff_t(out.offsets[c.first_ray]));
+  // Pass 2: the chunks are appended in ray order (no zero-fill of the result). When one thread
+  // traced every ray in order, as on one core, its buffer is the result and is moved.
+  std::vector<std::pair<Worker*, Chunk>> chunks;
+  for (Worker& w : workers)
+    for (const Chunk& c : w.chunks) chunks.emplace_back(&w, c);
+  std::sort(chunks.begin(), chunks.end(),
+            [](const auto& a, const auto& b) { return a.second.first_ray < b.second.first_ray; });
+  const bool one_buffer_in_order =
+      !chunks.empty() && std::all_of(chunks.begin(), chunks.end(), [&](const auto& c) {
+        return c.first == chunks.front().first && c.second.first_hit == out.offsets[c.second.first_ray];
+      });
+  if (one_buffer_in_order && chunks.front().first->hits.size() == out.offsets[n]) {
+    out.hits = std::move(chunks.front().first->hits);
+  } else {
+    out.hits.reserve(out.offsets[n]);
+    for (const auto& [w, c] : chunks) {
+      const auto from = w->hits.begin() + std::ptrdiff_t(c.first_hit);
+      out.hits.insert(out.hits.end(), from, from + std::ptrdiff_t(out.offsets[c.end_ray] - out.offsets[c.first_ray]));
     }
-  });
+  }
   return !tracker.stopped();
 }
 

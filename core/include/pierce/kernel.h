@@ -107,6 +107,8 @@ class HitIterator {
   bool next(Hit& out);
   // begin(ray, max_hits), then every next() hit (up to max_hits, 0 = all) appended to `out`.
   void collect(const Ray& ray, std::size_t max_hits, std::vector<Hit>& out);
+  // collect() for each ray in turn, ray i's hit count into counts[i]: one dispatch for them all.
+  void collect_each(std::span<const Ray> rays, std::size_t max_hits, std::vector<Hit>& out, std::size_t* counts);
   KernelKind kind() const { return kind_; }
   // The work done since construction; all zero unless constructed with KernelOptions::count.
   Counters counters() const;
