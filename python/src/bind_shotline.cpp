@@ -121,7 +121,7 @@ void bind_shotline(pyb::module_& m) {
       pyb::arg("scene"), pyb::arg("points"), pyb::arg("csg"), pyb::kw_only(), pyb::arg("kernel") = default_kernel_name(),
       pyb::arg("tolerance_rel") = 1e-6, pyb::arg("progress") = pyb::none(), pyb::arg("cancel") = nullptr,
       "Per point: 0 outside, 1 inside, 2 on the boundary of the CSG expression (POINT_CLASSES).");
-  m.attr("POINT_CLASSES") = pyb::make_tuple("outside", "inside", "on");
+  m.attr("POINT_CLASSES") = pyb::tuple(pyb::cast(enum_names<PointClass>()));
 
   // --- gqa ---
   pyb::class_<GqaQuantities>(m, "GqaQuantities")

@@ -17,11 +17,11 @@ namespace pierce_vtk {
 template <class E>
 constexpr E EnumAt(int code)
 {
-  constexpr auto& values = pierce::EnumNames<E>::values;
+  constexpr auto& values = pierce::kEnumTable<E>.values;
   if (code < 0 || static_cast<std::size_t>(code) >= std::size(values))
   {
     throw std::invalid_argument(
-      "no " + std::string(pierce::EnumNames<E>::what) + " number " + std::to_string(code));
+      "no " + std::string(pierce::kEnumTable<E>.what) + " number " + std::to_string(code));
   }
   return values[code].value;
 }
@@ -37,7 +37,7 @@ constexpr bool IsCodeOf(int code, E value)
 template <class E>
 const char* EnumNameAt(int code)
 {
-  constexpr auto& values = pierce::EnumNames<E>::values;
+  constexpr auto& values = pierce::kEnumTable<E>.values;
   if (code < 0 || static_cast<std::size_t>(code) >= std::size(values))
   {
     return "?";
@@ -50,7 +50,7 @@ template <class E>
 int EnumCodeOf(std::string_view name)
 {
   const E value = pierce::parse_enum_or_throw<E>(name);
-  constexpr auto& values = pierce::EnumNames<E>::values;
+  constexpr auto& values = pierce::kEnumTable<E>.values;
   for (std::size_t i = 0; i < std::size(values); ++i)
   {
     if (values[i].value == value)

@@ -41,6 +41,10 @@ inline Hit hit_of(const HitKey& k, float u, float v, const Vec3f& ng) {
 // `leave_before_enter` ranks leaving crossings first at equal t, then (geom, prim):
 // CSG classification needs a solid closed before its touching neighbour opens.
 enum class TieOrder : std::uint8_t { geom_prim, leave_before_enter };
+constexpr EnumTable<TieOrder, 2> enum_table(TieOrder) {
+  using enum TieOrder;
+  return {"tie order", {{geom_prim, "geom_prim"}, {leave_before_enter, "leave_before_enter"}}};
+}
 
 // Strict total order on hits under a tie policy. Hits are identified by (geom, prim);
 // `enter` is a function of them, so the order stays total.
@@ -111,12 +115,5 @@ template <class It>
 }
 
 inline bool same_hit(const Hit& a, const Hit& b) { return a.t == b.t && a.geom == b.geom && a.prim == b.prim; }
-
-template <>
-struct EnumNames<TieOrder> {
-  static constexpr std::string_view what = "tie order";
-  static constexpr NamedValue<TieOrder> values[] = {{TieOrder::geom_prim, "geom_prim"},
-                                                    {TieOrder::leave_before_enter, "leave_before_enter"}};
-};
 
 }  // namespace pierce

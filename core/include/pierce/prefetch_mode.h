@@ -14,13 +14,10 @@
 namespace pierce {
 
 enum class PrefetchMode : int { automatic = 0, always = 1, never = 2 };
-
-template <>
-struct EnumNames<PrefetchMode> {
-  static constexpr std::string_view what = "prefetch mode";
-  static constexpr NamedValue<PrefetchMode> values[] = {
-      {PrefetchMode::automatic, "auto"}, {PrefetchMode::always, "always"}, {PrefetchMode::never, "never"}};
-};
+constexpr EnumTable<PrefetchMode, 3> enum_table(PrefetchMode) {
+  using enum PrefetchMode;
+  return {"prefetch mode", {{automatic, "auto"}, {always, "always"}, {never, "never"}}};
+}
 
 namespace detail {
 // The mode in use, read by every traversal (one relaxed load, inline: no call per traversal).

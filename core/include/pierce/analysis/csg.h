@@ -84,6 +84,10 @@ class CsgEvaluator {
 };
 
 enum class PointClass : std::uint8_t { outside, inside, on };
+constexpr EnumTable<PointClass, 3> enum_table(PointClass) {
+  using enum PointClass;
+  return {"point class", {{outside, "outside"}, {inside, "inside"}, {on, "on"}}};
+}
 inline std::string_view point_class_name(PointClass c);  // enum_name (its table follows the namespace)
 
 // Inside / outside / on of points with respect to an expression, by the same machinery: rays
@@ -120,13 +124,5 @@ class PointClassifier {
 };
 
 }  // namespace pierce::analysis
-
-template <>
-struct pierce::EnumNames<pierce::analysis::PointClass> {
-  static constexpr std::string_view what = "point class";
-  static constexpr NamedValue<analysis::PointClass> values[] = {{analysis::PointClass::outside, "outside"},
-                                                                {analysis::PointClass::inside, "inside"},
-                                                                {analysis::PointClass::on, "on"}};
-};
 
 inline std::string_view pierce::analysis::point_class_name(PointClass c) { return enum_name(c); }

@@ -40,13 +40,19 @@
 namespace pierce::analysis {
 
 enum class Effect : std::uint8_t { first_hit, thickness, transparency, xray, penetration, overlaps, classification };
+constexpr EnumTable<Effect, 7> enum_table(Effect) {
+  using enum Effect;
+  return {"effect", {{first_hit, "first_hit"}, {thickness, "thickness"}, {transparency, "transparency"},
+                  {xray, "xray"}, {penetration, "penetration"}, {overlaps, "overlaps"},
+                  {classification, "classification"}}};
+}
 inline constexpr std::size_t kEffectCount = 7;
 inline constexpr Effect kAllEffects[kEffectCount] = {Effect::first_hit,   Effect::thickness, Effect::transparency,
                                                       Effect::xray,        Effect::penetration, Effect::overlaps,
                                                       Effect::classification};
-// Through the names table after the namespace (enum_names.h), as the scene files spell them.
-inline std::string_view effect_name(Effect e);
-inline std::optional<Effect> parse_effect(std::string_view name);
+// The names of enum_table(Effect), as the scene files spell them.
+inline std::string_view effect_name(Effect e) { return enum_name(e); }
+inline std::optional<Effect> parse_effect(std::string_view name) { return parse_enum<Effect>(name); }
 // True for the effects that read partitions (xray, penetration, overlaps, classification).
 bool needs_partitions(Effect e);
 
@@ -146,18 +152,3 @@ EffectsResult run_effects(const Accel& accel, const std::vector<Ray>& rays, cons
                           const Progress& progress = {});
 
 }  // namespace pierce::analysis
-
-template <>
-struct pierce::EnumNames<pierce::analysis::Effect> {
-  static constexpr std::string_view what = "effect";
-  static constexpr NamedValue<analysis::Effect> values[] = {
-      {analysis::Effect::first_hit, "first_hit"}, {analysis::Effect::thickness, "thickness"},
-      {analysis::Effect::transparency, "transparency"}, {analysis::Effect::xray, "xray"},
-      {analysis::Effect::penetration, "penetration"}, {analysis::Effect::overlaps, "overlaps"},
-      {analysis::Effect::classification, "classification"}};
-};
-
-inline std::string_view pierce::analysis::effect_name(Effect e) { return enum_name(e); }
-inline std::optional<pierce::analysis::Effect> pierce::analysis::parse_effect(std::string_view name) {
-  return parse_enum<Effect>(name);
-}

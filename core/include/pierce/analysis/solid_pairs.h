@@ -31,6 +31,10 @@
 namespace pierce::analysis {
 
 enum class PairKind { clash, contact, clearance };
+constexpr EnumTable<PairKind, 3> enum_table(PairKind) {
+  using enum PairKind;
+  return {"pair kind", {{clash, "clash"}, {contact, "contact"}, {clearance, "clearance"}}};
+}
 
 struct SolidPairOptions {
   double clearance = 0;  // D: absolute distance, >= 0
@@ -86,10 +90,3 @@ TrianglePairDistance triangle_distance(const Vec3d a[3], const Vec3d b[3]);
 
 }  // namespace pierce::analysis
 
-template <>
-struct pierce::EnumNames<pierce::analysis::PairKind> {
-  static constexpr std::string_view what = "pair kind";
-  static constexpr NamedValue<analysis::PairKind> values[] = {{analysis::PairKind::clash, "clash"},
-                                                              {analysis::PairKind::contact, "contact"},
-                                                              {analysis::PairKind::clearance, "clearance"}};
-};

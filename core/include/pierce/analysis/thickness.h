@@ -58,6 +58,23 @@ enum class ConeAggregate { shapira, median };
 // Origin offsets for rays from face samples: never change a result, only the work.
 enum class OffsetMode { off, on };
 
+constexpr EnumTable<ThicknessMethod, 3> enum_table(ThicknessMethod) {
+  using enum ThicknessMethod;
+  return {"thickness method", {{ray, "ray"}, {cone, "cone"}, {sphere, "sphere"}}};
+}
+constexpr EnumTable<SampleAt, 2> enum_table(SampleAt) {
+  using enum SampleAt;
+  return {"sampling", {{vertex, "vertex"}, {face, "face"}}};
+}
+constexpr EnumTable<ConeAggregate, 2> enum_table(ConeAggregate) {
+  using enum ConeAggregate;
+  return {"cone aggregate", {{shapira, "shapira"}, {median, "median"}}};
+}
+constexpr EnumTable<OffsetMode, 2> enum_table(OffsetMode) {
+  using enum OffsetMode;
+  return {"origin offset mode", {{off, "off"}, {on, "on"}}};
+}
+
 struct ThicknessOptions {
   ThicknessMethod method = ThicknessMethod::ray;
   SampleAt per = SampleAt::vertex;
@@ -107,6 +124,11 @@ enum class ThicknessStatus : std::uint8_t {
   no_normal = 2,  // degenerate face or vertex without a usable normal
   tessellation = 3,  // CAD input: an artefact of the tessellation (see above), no thickness
 };
+constexpr EnumTable<ThicknessStatus, 4> enum_table(ThicknessStatus) {
+  using enum ThicknessStatus;
+  return {"thickness status",
+          {{ok, "ok"}, {no_exit, "no_exit"}, {no_normal, "no_normal"}, {tessellation, "tessellation"}}};
+}
 
 struct SolidThickness {
   std::uint32_t geom = 0;
@@ -144,7 +166,6 @@ struct ThicknessResult {
 
   std::size_t size() const { return thickness.size(); }
 };
-
 
 // Throws std::invalid_argument on bad options (negative distances, cone_rays < 1, angle outside
 // (0, 180), a non-exact kernel, an unknown solid id).
@@ -193,39 +214,4 @@ double cone_aggregate(std::span<const std::pair<double, double>> length_angle, C
                       double min_angle);
 
 }  // namespace pierce::analysis
-
-// Option names, shared by the front ends (enum_names.h).
-template <>
-struct pierce::EnumNames<pierce::analysis::ThicknessMethod> {
-  static constexpr std::string_view what = "thickness method";
-  static constexpr NamedValue<analysis::ThicknessMethod> values[] = {
-      {analysis::ThicknessMethod::ray, "ray"}, {analysis::ThicknessMethod::cone, "cone"},
-      {analysis::ThicknessMethod::sphere, "sphere"}};
-};
-template <>
-struct pierce::EnumNames<pierce::analysis::SampleAt> {
-  static constexpr std::string_view what = "sampling";
-  static constexpr NamedValue<analysis::SampleAt> values[] = {{analysis::SampleAt::vertex, "vertex"},
-                                                              {analysis::SampleAt::face, "face"}};
-};
-template <>
-struct pierce::EnumNames<pierce::analysis::ConeAggregate> {
-  static constexpr std::string_view what = "cone aggregate";
-  static constexpr NamedValue<analysis::ConeAggregate> values[] = {{analysis::ConeAggregate::shapira, "shapira"},
-                                                                   {analysis::ConeAggregate::median, "median"}};
-};
-template <>
-struct pierce::EnumNames<pierce::analysis::OffsetMode> {
-  static constexpr std::string_view what = "origin offset mode";
-  static constexpr NamedValue<analysis::OffsetMode> values[] = {{analysis::OffsetMode::off, "off"},
-                                                                {analysis::OffsetMode::on, "on"}};
-};
-template <>
-struct pierce::EnumNames<pierce::analysis::ThicknessStatus> {
-  static constexpr std::string_view what = "thickness status";
-  static constexpr NamedValue<analysis::ThicknessStatus> values[] = {{analysis::ThicknessStatus::ok, "ok"},
-                                                                     {analysis::ThicknessStatus::no_exit, "no_exit"},
-                                                                     {analysis::ThicknessStatus::no_normal, "no_normal"},
-                                                                     {analysis::ThicknessStatus::tessellation, "tessellation"}};
-};
 

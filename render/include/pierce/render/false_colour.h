@@ -61,9 +61,13 @@ struct FalseColourImage {
 
 // Which work a traversal heat map shows per pixel (Gribble 2016, from the counting kernels).
 enum class CostMetric { traversal_steps, node_tests, prim_tests };
-// Through the names table after the namespace (enum_names.h): steps, node-tests, prim-tests.
-inline std::string_view cost_metric_name(CostMetric m);
-inline std::optional<CostMetric> parse_cost_metric(std::string_view name);
+constexpr EnumTable<CostMetric, 3> enum_table(CostMetric) {
+  using enum CostMetric;
+  return {"heat map count", {{traversal_steps, "steps"}, {node_tests, "node-tests"}, {prim_tests, "prim-tests"}}};
+}
+// The names of enum_table(CostMetric): steps, node-tests, prim-tests.
+inline std::string_view cost_metric_name(CostMetric m) { return enum_name(m); }
+inline std::optional<CostMetric> parse_cost_metric(std::string_view name) { return parse_enum<CostMetric>(name); }
 
 struct HeatmapStats {
   CostMetric metric = CostMetric::traversal_steps;
@@ -96,16 +100,3 @@ void parse_picture_size(const std::string& option, const std::string& spec, int&
 Vec3d parse_view_direction(const std::string& option, const std::string& spec);
 
 }  // namespace pierce
-
-template <>
-struct pierce::EnumNames<pierce::CostMetric> {
-  static constexpr std::string_view what = "heat map count";
-  static constexpr NamedValue<CostMetric> values[] = {{CostMetric::traversal_steps, "steps"},
-                                                      {CostMetric::node_tests, "node-tests"},
-                                                      {CostMetric::prim_tests, "prim-tests"}};
-};
-
-inline std::string_view pierce::cost_metric_name(CostMetric m) { return enum_name(m); }
-inline std::optional<pierce::CostMetric> pierce::parse_cost_metric(std::string_view name) {
-  return parse_enum<CostMetric>(name);
-}
