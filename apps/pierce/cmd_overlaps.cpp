@@ -118,13 +118,8 @@ void write_json(std::FILE* f, const Scene& s, const OverlapsCli& o, const Coplan
   j["coplanar_tolerance"] = c.tolerance;
   auto& cop = j["coplanar"] = nlohmann::ordered_json::array();
   for (const CoplanarSolidPair& p : c.solid_pairs)
-    cop.push_back({{"solid_a", p.a},
-                   {"solid_b", p.b},
-                   {"triangle_pairs", p.pairs},
-                   {"exact", p.exact_pairs},
-                   {"same_facing", p.same_facing},
-                   {"opposite_facing", p.opposite_facing},
-                   {"area", p.area},
+    cop.push_back({{"solid_a", p.a}, {"solid_b", p.b}, {"triangle_pairs", p.pairs}, {"exact", p.exact_pairs},
+                   {"same_facing", p.same_facing}, {"opposite_facing", p.opposite_facing}, {"area", p.area},
                    {"where", json_point(p.where)}});
   auto& pairs = j["coplanar_triangle_pairs"] = nlohmann::ordered_json::array();
   for (const CoplanarPair& p : c.pairs)

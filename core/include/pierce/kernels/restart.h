@@ -12,10 +12,7 @@ class RestartKernel : public WideKernel<T, C> {
  public:
   using Base::Base;
 
-  void begin(const Ray& ray, std::size_t /*max_hits*/ = 0) {
-    this->prepare(ray);
-    resume_.clear();
-  }
+  void begin(const Ray& ray, std::size_t /*max_hits*/ = 0) { this->prepare(ray); resume_.clear(); }
 
   bool next(Hit& out) {
     if (!this->traceable()) return false;
