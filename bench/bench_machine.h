@@ -4,16 +4,20 @@
 #include <fstream>
 #include <string>
 
+#include "pierce/simd/simd_level.h"
+
 namespace pierce::bench {
 
+// The CPU's model name and the SIMD level the kernels run (guests of one model differ in it).
 inline std::string cpu_model() {
+  const std::string simd = " (SIMD " + std::string(simd_level_name(simd_level())) + ")";
   std::ifstream in("/proc/cpuinfo");
   for (std::string line; std::getline(in, line);)
     if (line.rfind("model name", 0) == 0) {
       const auto colon = line.find(':');
-      if (colon != std::string::npos) return line.substr(line.find_first_not_of(" \t", colon + 1));
+      if (colon != std::string::npos) return line.substr(line.find_first_not_of(" \t", colon + 1)) + simd;
     }
-  return "unknown";
+  return "unknown" + simd;
 }
 
 inline std::string load_average() {
