@@ -7,6 +7,7 @@
 
 #include "../common/test_world.h"
 #include "pocket_block.h"
+#include "pierce/analysis/mesh_topology.h"
 #include "pierce/analysis/thickness.h"
 
 namespace pierce::test {
@@ -24,8 +25,9 @@ constexpr Vec3d kBlock{40, 30, 10};
 const std::vector<Pocket> kPockets{{4, 12, 4, 10, 0.5}, {16, 24, 4, 10, 1.0}, {28, 36, 4, 10, 2.0}, {16, 24, 16, 26, 1.5}};
 constexpr double kPocketArea = 8 * 6;
 
-// Every sample's region id agrees with its flag, and each region with its samples.
-void check_ids(const ThicknessResult& r, const ThicknessOptions& o) {
+// Every sample's region id agrees with its flag, and each region with its samples (sample
+// points: per vertex, coincident vertices once).
+void check_ids(const ThicknessResult& r, const ThicknessOptions& o, const Scene& scene) {
   const std::size_t thin = r.thin_regions.size();
   std::vector<std::size_t> count(thin + r.thick_regions.size(), 0);
   std::vector<double> extreme(count.size(), std::numeric_limits<double>::quiet_NaN());
@@ -50,7 +52,8 @@ void check_ids(const ThicknessResult& r, const ThicknessOptions& o) {
     } else {
       EXPECT_LE(t, reg.thickness);
     }
-    ++count[std::size_t(id)];
+    const std::uint32_t v = r.element[i];
+    count[std::size_t(id)] += o.per == SampleAt::face || analysis::weld_by_position(scene.geometry(r.solid[i]).vertices)[v] == v;
     double& e = extreme[std::size_t(id)];
     if (std::isnan(e) || (is_thin ? t < e : t > e)) e = t;
   }
@@ -86,7 +89,7 @@ TEST_P(PocketFloors, EachThinFloorIsOneRegionWithItsMinimumAndArea) {
   o.per = GetParam();
   o.min_thickness = 1.5;
   const ThicknessResult r = compute_thickness(world->accel, o);
-  check_ids(r, o);
+  check_ids(r, o, world->scene);
   ASSERT_EQ(r.thin_regions.size(), 2u);  // floors 0.5 and 1.0; not 1.5 (exactly T) nor 2.0
   expect_floor(r.thin_regions[0], kPockets[0], 0.10);
   expect_floor(r.thin_regions[1], kPockets[1], 0.10);
@@ -99,7 +102,7 @@ TEST_P(PocketFloors, AWallOfExactlyTheThresholdIsNotThin) {
   o.per = GetParam();
   o.min_thickness = 1.0;  // the second floor is exactly 1.0
   const ThicknessResult r = compute_thickness(world->accel, o);
-  check_ids(r, o);
+  check_ids(r, o, world->scene);
   ASSERT_EQ(r.thin_regions.size(), 1u);
   expect_floor(r.thin_regions[0], kPockets[0], 0.10);
 }
@@ -111,7 +114,7 @@ TEST_P(PocketFloors, CoarseMeshAreaIsRefined) {
   o.per = GetParam();
   o.min_thickness = 1.5;
   const ThicknessResult r = compute_thickness(world->accel, o);
-  check_ids(r, o);
+  check_ids(r, o, world->scene);
   ASSERT_EQ(r.thin_regions.size(), 1u);
   const ThicknessRegion& reg = r.thin_regions[0];
   EXPECT_NEAR(reg.area, 2 * kPocketArea, 0.10 * 2 * kPocketArea);
@@ -131,7 +134,7 @@ TEST_P(PocketFloors, ThickRegionsAboveMax) {
   o.min_thickness = 1.5;
   o.max_thickness = 5;
   const ThicknessResult r = compute_thickness(world->accel, o);
-  check_ids(r, o);
+  check_ids(r, o, world->scene);
   ASSERT_EQ(r.thin_regions.size(), 2u);
   ASSERT_FALSE(r.thick_regions.empty());
   double max_t = 0;
@@ -165,7 +168,7 @@ TEST_P(PocketFloors, ConeAndSphereGroupByTheSameRule) {
     o.cone_rays = 9;
     o.min_thickness = 1.5;
     const ThicknessResult r = compute_thickness(world->accel, o);
-    check_ids(r, o);
+    check_ids(r, o, world->scene);
     ASSERT_FALSE(r.thin_regions.empty()) << enum_name(method);
     const ThicknessRegion& g = r.thin_regions[0];
     EXPECT_GT(g.area, 0) << enum_name(method);
@@ -177,6 +180,56 @@ TEST_P(PocketFloors, ConeAndSphereGroupByTheSameRule) {
     EXPECT_GE(g.point.y, kPockets[0].y0 - 1e-9) << enum_name(method);
     EXPECT_LE(g.point.y, kPockets[0].y1 + 1e-9) << enum_name(method);
   }
+}
+
+// A map measured in two parts (every other element, as two processes would) and assembled is
+// the map of one run: rows, statistics and regions, whatever order the parts come in.
+TEST_P(PocketFloors, AssembledFromPartsIsOneRun) {
+  const auto world = make_world({pocket_block(kBlock, kPockets, 1.0)});
+  ThicknessOptions o;
+  o.per = GetParam();
+  o.min_thickness = 1.5;
+  o.max_thickness = 5;
+  const ThicknessResult whole = compute_thickness(world->accel, o);
+  const Geometry& geo = world->scene.geometry(0);
+  const std::size_t n = o.per == SampleAt::vertex ? geo.vertices.size() : geo.triangles.size();
+  std::vector<analysis::MeasuredSample> rows;
+  for (int part = 1; part >= 0; --part) {
+    ThicknessOptions measure = o;
+    measure.min_thickness = 0, measure.max_thickness = std::numeric_limits<double>::infinity();
+    measure.sample_mask.assign(1, std::vector<std::uint8_t>(n, 0));
+    for (std::size_t e = std::size_t(part); e < n; e += 2) measure.sample_mask[0][e] = 1;
+    const ThicknessResult r = compute_thickness(world->accel, measure);
+    for (std::size_t i = 0; i < r.size(); ++i)
+      rows.push_back({r.solid[i], r.element[i], r.point[i], r.normal[i], r.thickness[i], r.status[i], 0});
+  }
+  ThicknessOptions all = o;
+  all.sample_mask.assign(1, std::vector<std::uint8_t>(n, 1));
+  const ThicknessResult a = analysis::assemble_thickness(world->accel, all, rows);
+  ASSERT_EQ(a.size(), whole.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(a.element[i], whole.element[i]);
+    EXPECT_EQ(std::isnan(a.thickness[i]) ? -1.0 : a.thickness[i], std::isnan(whole.thickness[i]) ? -1.0 : whole.thickness[i]);
+    EXPECT_EQ(a.status[i], whole.status[i]);
+    EXPECT_EQ(a.thin[i], whole.thin[i]);
+    EXPECT_EQ(a.region[i], whole.region[i]) << "sample " << i;
+  }
+  ASSERT_EQ(a.thin_regions.size(), whole.thin_regions.size());
+  ASSERT_EQ(a.thick_regions.size(), whole.thick_regions.size());
+  for (std::size_t k = 0; k < a.thin_regions.size() + a.thick_regions.size(); ++k) {
+    const bool thin = k < a.thin_regions.size();
+    const ThicknessRegion& x = thin ? a.thin_regions[k] : a.thick_regions[k - a.thin_regions.size()];
+    const ThicknessRegion& y = thin ? whole.thin_regions[k] : whole.thick_regions[k - whole.thin_regions.size()];
+    EXPECT_EQ(x.thickness, y.thickness);
+    EXPECT_EQ(x.point, y.point);
+    EXPECT_EQ(x.exit, y.exit);
+    EXPECT_EQ(x.area, y.area);
+    EXPECT_EQ(x.samples, y.samples);
+  }
+  EXPECT_EQ(a.solids[0].thin, whole.solids[0].thin);
+  EXPECT_EQ(a.solids[0].summary.min, whole.solids[0].summary.min);
+  std::erase_if(rows, [](const analysis::MeasuredSample& m) { return m.element == 0; });  // a sample without its row
+  EXPECT_THROW(analysis::assemble_thickness(world->accel, all, rows), std::invalid_argument);
 }
 
 INSTANTIATE_TEST_SUITE_P(Sampling, PocketFloors, ::testing::Values(SampleAt::vertex, SampleAt::face),

@@ -137,10 +137,10 @@ def main():
     problems = compare(serial, load(os.path.join(dirs["mpi"], args.case), 2))
     # Nothing measured twice: the thickness runs report how many samples each rank measured;
     # their sum is the number of distinct samples (run order of pv_mpi_case.py: sphere Points,
-    # sphere Cells, step, brep Points, brep Cells).
+    # sphere Cells, sphere ghost points, step, brep Points, brep Cells).
     with open(os.path.join(args.work, "mpi.log")) as f:
         measured = [int(n) for n in re.findall(r"samples measured per rank: [0-9 +]+ = ([0-9]+)", f.read())]
-    first = {"sphere": 0, "step": 2, "brep": 3}.get(args.case)
+    first = {"sphere": 0, "step": 3, "brep": 4}.get(args.case)
     if first is not None:
         for k, (label, serial_run) in enumerate(serial[0]["runs"].items()):
             n = measured[first + k] if first + k < len(measured) else None

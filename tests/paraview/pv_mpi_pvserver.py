@@ -17,7 +17,7 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import pvbatch_main  # noqa: E402
-from pv_mpi_case import records, table_rows  # noqa: E402
+from pv_mpi_case import SPHERE_THIN, records, table_rows  # noqa: E402
 
 from paraview import servermanager  # noqa: E402
 from paraview.simple import D3, Connect, Disconnect, LoadPlugin, XMLPolyDataReader  # noqa: E402
@@ -49,10 +49,11 @@ def main():
         Connect("localhost", port)
         LoadPlugin(args.plugin, remote=True, ns=globals())
         model = D3(Input=XMLPolyDataReader(FileName=[os.path.join(args.work, "data", "shell.vtp")]))
-        thickness = PierceThickness(Input=model, SampleAt="Cells")  # noqa: F821 (from the plugin)
+        # As pv_mpi_case.py's sphere run per cell.
+        thickness = PierceThickness(Input=model, SampleAt="Cells", MinThickness=SPHERE_THIN["Cells"])  # noqa: F821 (the plugin's)
         thickness.UpdatePipeline()
         surfaces = servermanager.Fetch(thickness, None, None)
-        got = records(surfaces, ["Thickness", "ThicknessStatus", "Thin", "SolidId"], True)
+        got = records(surfaces, ["Thickness", "ThicknessStatus", "Thin", "SolidId", "Region"], True)
         serial = json.load(open(os.path.join(args.work, "serial", "sphere", "rank0.json")))["runs"]["Cells"]
         reference = {json.dumps(k): v for k, v in serial["items"]}
         seen = {}

@@ -31,7 +31,7 @@ namespace pierce_vtk {
 
 namespace pa = pierce::analysis;
 
-void AttachThickness(const pa::ThicknessResult& result, Surfaces& surfaces) {
+void AttachThickness(const pa::ThicknessResult& result, Surfaces& surfaces, const VertexOwners* coincident) {
   const bool per_cell = result.per == pa::SampleAt::face;
   struct Arrays {
     vtkSmartPointer<vtkDoubleArray> thickness = vtkSmartPointer<vtkDoubleArray>::New();
@@ -81,6 +81,15 @@ void AttachThickness(const pa::ThicknessResult& result, Surfaces& surfaces) {
       for (std::size_t c = 0; c < solid.prim_of_cell.size(); ++c) cell_of_prim[s][solid.prim_of_cell[c]] = vtkIdType(c);
     }
   }
+  auto set_row = [&](Arrays& a, vtkIdType e, std::size_t i) {
+    a.thickness->SetValue(e, result.thickness[i]);
+    a.thin->SetValue(e, result.thin[i]);
+    a.status->SetValue(e, static_cast<unsigned char>(result.status[i]));
+    if (i < result.region.size()) a.region->SetValue(e, result.region[i]);
+    if (with_brep_faces) a.brep_faces->SetValue(e, result.brep_faces[i]);
+  };
+  std::vector<std::vector<std::uint8_t>> has_row(surfaces.solids.size());
+  for (std::size_t s = 0; s < surfaces.solids.size(); ++s) has_row[s].assign(std::size_t(arrays[s].thickness->GetNumberOfValues()), 0);
   for (std::size_t i = 0; i < result.size(); ++i) {
     const int s = local_of[result.solid[i]];
     if (s < 0) continue;
@@ -93,11 +102,30 @@ void AttachThickness(const pa::ThicknessResult& result, Surfaces& surfaces) {
       e -= vtkIdType(solid.vertex_offset);
     }
     if (e < 0 || e >= a.thickness->GetNumberOfValues()) continue;  // another rank's element
-    a.thickness->SetValue(e, result.thickness[i]);
-    a.thin->SetValue(e, result.thin[i]);
-    a.status->SetValue(e, static_cast<unsigned char>(result.status[i]));
-    if (i < result.region.size()) a.region->SetValue(e, result.region[i]);
-    if (with_brep_faces) a.brep_faces->SetValue(e, result.brep_faces[i]);
+    set_row(a, e, i);
+    has_row[std::size_t(s)][std::size_t(e)] = 1;
+  }
+  if (coincident && !per_cell) {
+    // Points whose sample another rank measured (along the cut) or that no triangle of this
+    // rank uses (ghost points): the row of a coincident point, as serial gives every copy.
+    std::vector<std::vector<std::uint32_t>> row_of_group(surfaces.scene.geometries().size());
+    for (std::size_t i = 0; i < result.size(); ++i) {
+      const std::uint32_t g = result.solid[i];
+      std::vector<std::uint32_t>& rows = row_of_group[g];
+      if (rows.empty()) rows.assign(surfaces.scene.geometry(g).vertices.size(), pierce::kInvalidId);
+      std::uint32_t& row = rows[coincident->weld[g][result.element[i]]];
+      if (row == pierce::kInvalidId) row = std::uint32_t(i);
+    }
+    for (std::size_t s = 0; s < surfaces.solids.size(); ++s) {
+      const Solid& solid = surfaces.solids[s];
+      const std::vector<std::uint32_t>& rows = row_of_group[solid.id];
+      if (rows.empty()) continue;
+      for (std::size_t e = 0; e < has_row[s].size(); ++e) {
+        if (has_row[s][e]) continue;
+        const std::uint32_t row = rows[coincident->weld[solid.id][solid.vertex_offset + e]];
+        if (row != pierce::kInvalidId) set_row(arrays[s], vtkIdType(e), row);
+      }
+    }
   }
   for (std::size_t g = 0; g < surfaces.solids.size(); ++g) {
     vtkPolyData* surface = surfaces.solids[g].surface;
@@ -181,21 +209,16 @@ VertexOwners FindVertexOwners(const Surfaces& surfaces) {
   const std::size_t n = surfaces.scene.geometries().size();
   o.weld.resize(n);
   o.owner.resize(n);
-  o.shared.resize(n);
   for (std::size_t g = 0; g < n; ++g) {
     const pierce::Geometry& geo = surfaces.scene.geometry(std::uint32_t(g));
     const std::vector<std::uint32_t>& begin = surfaces.rank_vertex_begin[g];
     o.weld[g] = pa::weld_by_position(geo.vertices);
     o.owner[g].assign(geo.vertices.size(), std::numeric_limits<int>::max());
-    o.shared[g].assign(geo.vertices.size(), 0);
     for (const pierce::Tri& t : geo.triangles)
       for (const std::uint32_t v : t) {
         int& owner = o.owner[g][o.weld[g][v]];
         owner = std::min(owner, RankOfVertex(begin, v));
       }
-    for (const pierce::Tri& t : geo.triangles)
-      for (const std::uint32_t v : t)
-        if (RankOfVertex(begin, v) != o.owner[g][o.weld[g][v]]) o.shared[g][o.weld[g][v]] = 1;
   }
   return o;
 }
@@ -222,46 +245,50 @@ std::vector<std::vector<std::uint8_t>> OwnSampleMask(const Surfaces& surfaces, b
   return mask;
 }
 
-void ShareVertexResults(const Surfaces& surfaces, const VertexOwners& owners, const Distribution& distribution,
-                        pa::ThicknessResult& result) {
-  // (solid, group, thickness, status, thin) of the shared groups this rank measured.
-  std::vector<double> mine;
-  std::set<std::pair<std::uint32_t, std::uint32_t>> sent;
-  for (std::size_t i = 0; i < result.size(); ++i) {
-    const std::uint32_t g = result.solid[i];
-    const std::uint32_t group = owners.weld[g][result.element[i]];
-    if (!owners.shared[g][group] || owners.owner[g][group] != surfaces.rank || !sent.insert({g, group}).second)
+std::vector<std::vector<std::uint8_t>> AllSampleMask(const Surfaces& surfaces, bool per_cell,
+                                                     const VertexOwners& owners) {
+  std::vector<std::vector<std::uint8_t>> mask(surfaces.scene.geometries().size());
+  for (std::size_t g = 0; g < mask.size(); ++g) {
+    const pierce::Geometry& geo = surfaces.scene.geometry(std::uint32_t(g));
+    if (per_cell) {
+      mask[g].assign(geo.triangles.size(), 1);  // every triangle comes from exactly one rank
       continue;
-    mine.insert(mine.end(), {double(g), double(group), result.thickness[i], double(result.status[i]),
-                             double(result.thin[i]), result.brep_faces.empty() ? 0.0 : double(result.brep_faces[i])});
-  }
-  constexpr std::size_t kFields = 6;
-  const std::vector<double> all = distribution.AllGather(mine);
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> from;
-  for (std::size_t k = 0; k + kFields <= all.size(); k += kFields)
-    from[{std::uint32_t(all[k]), std::uint32_t(all[k + 1])}] = k;
-  for (const Solid& solid : surfaces.solids) {
-    const std::uint32_t g = solid.id;
-    const std::vector<std::uint8_t> used = UsedPoints(solid.surface);
-    for (std::size_t i = 0; i < used.size(); ++i) {
-      const std::uint32_t v = solid.vertex_offset + std::uint32_t(i);
-      const std::uint32_t group = owners.weld[g][v];
-      if (!used[i] || owners.owner[g][group] == surfaces.rank) continue;
-      const auto found = from.find({g, group});
-      if (found == from.end()) continue;  // cannot happen: the owner measured every group it owns
-      const std::size_t k = found->second;
-      result.solid.push_back(g);
-      result.element.push_back(v);
-      result.point.push_back(surfaces.scene.geometry(g).vertices[v]);
-      result.normal.push_back({});
-      result.thickness.push_back(all[k + 2]);
-      result.status.push_back(static_cast<pa::ThicknessStatus>(int(all[k + 3])));
-      result.thin.push_back(static_cast<std::uint8_t>(all[k + 4]));
-      // Regions are found by each process on its own samples: the copied rows have none.
-      if (!result.region.empty()) result.region.push_back(-1);
-      if (!result.brep_faces.empty()) result.brep_faces.push_back(static_cast<std::uint8_t>(all[k + 5]));
     }
+    mask[g].assign(geo.vertices.size(), 0);
+    const std::vector<std::uint32_t>& begin = surfaces.rank_vertex_begin[g];
+    for (const pierce::Tri& t : geo.triangles)
+      for (const std::uint32_t v : t)
+        mask[g][v] = owners.owner[g][owners.weld[g][v]] == RankOfVertex(begin, v);
   }
+  return mask;
+}
+
+pa::ThicknessResult AssembleThickness(const pierce::Accel& accel, const pa::ThicknessOptions& options,
+                                      const pa::ThicknessResult& mine, const Distribution& distribution) {
+  // Per row: solid, element, point, normal, thickness, status, B-rep faces.
+  constexpr std::size_t kFields = 11;
+  std::vector<double> rows;
+  rows.reserve(mine.size() * kFields);
+  for (std::size_t i = 0; i < mine.size(); ++i) {
+    const pierce::Vec3d p = mine.point[i], n = mine.normal[i];
+    rows.insert(rows.end(), {double(mine.solid[i]), double(mine.element[i]), p.x, p.y, p.z, n.x, n.y, n.z,
+                             mine.thickness[i], double(mine.status[i]),
+                             mine.brep_faces.empty() ? 0.0 : double(mine.brep_faces[i])});
+  }
+  const std::vector<double> all = distribution.AllGather(rows);
+  std::vector<pa::MeasuredSample> measured(all.size() / kFields);
+  for (std::size_t r = 0; r < measured.size(); ++r) {
+    const double* f = all.data() + r * kFields;
+    pa::MeasuredSample& m = measured[r];
+    m.solid = std::uint32_t(f[0]);
+    m.element = std::uint32_t(f[1]);
+    m.point = {f[2], f[3], f[4]};
+    m.normal = {f[5], f[6], f[7]};
+    m.thickness = f[8];
+    m.status = static_cast<pa::ThicknessStatus>(int(f[9]));
+    m.brep_faces = static_cast<std::uint8_t>(f[10]);
+  }
+  return pa::assemble_thickness(accel, options, measured);
 }
 
 std::string DescribeSampleSplit(const pa::ThicknessResult& result, bool per_cell, const VertexOwners& owners,

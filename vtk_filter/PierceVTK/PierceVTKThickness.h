@@ -17,7 +17,11 @@ struct Surfaces;
 // Point (per vertex) or cell (per face) arrays Thickness, Thin, ThicknessStatus, SolidId on each
 // solid's surface, and BRepFaces when the result has them (CAD input on its B-rep: the faces
 // sampled at the element, 2 or more at a vertex on an edge); Thickness becomes the active scalars.
-void AttachThickness(const pierce::analysis::ThicknessResult& result, Surfaces& surfaces);
+// Distributed runs per vertex pass `coincident`: a point without a row of its own (one another
+// rank measured, or a ghost point no triangle of this rank uses) takes a coincident point's row.
+struct VertexOwners;
+void AttachThickness(const pierce::analysis::ThicknessResult& result, Surfaces& surfaces,
+                     const VertexOwners* coincident = nullptr);
 
 // One row per solid: SolidId, Name, Elements, Valid, NoExit, NoNormal, Thin, Tessellation,
 // OnBRep (1: measured on the exact B-rep), Min, Max, Mean and the percentiles as P<q> (one column
@@ -30,7 +34,6 @@ void WriteThicknessTable(const std::vector<pierce::analysis::SolidThickness>& so
 struct VertexOwners {
   std::vector<std::vector<std::uint32_t>> weld;   // per geometry: weld_by_position
   std::vector<std::vector<int>> owner;            // per geometry and group (its first vertex)
-  std::vector<std::vector<std::uint8_t>> shared;  // the group is used by another rank too
 };
 VertexOwners FindVertexOwners(const Surfaces& surfaces);
 
@@ -40,10 +43,17 @@ VertexOwners FindVertexOwners(const Surfaces& surfaces);
 std::vector<std::vector<std::uint8_t>> OwnSampleMask(const Surfaces& surfaces, bool per_cell,
                                                      const VertexOwners& owners);
 
-// Distributed runs, per vertex, collective: adds to `result` the points of this rank's pieces
-// whose group another rank measured, with that rank's values.
-void ShareVertexResults(const Surfaces& surfaces, const VertexOwners& owners, const Distribution& distribution,
-                        pierce::analysis::ThicknessResult& result);
+// Distributed runs: the union of every rank's OwnSampleMask, computed on each rank.
+std::vector<std::vector<std::uint8_t>> AllSampleMask(const Surfaces& surfaces, bool per_cell,
+                                                     const VertexOwners& owners);
+
+// Distributed runs, collective: the whole map on every rank, as serial computes it (regions
+// included), from each rank's `mine` (measured with its OwnSampleMask); `options` carry
+// AllSampleMask. See pierce::analysis::assemble_thickness.
+pierce::analysis::ThicknessResult AssembleThickness(const pierce::Accel& accel,
+                                                    const pierce::analysis::ThicknessOptions& options,
+                                                    const pierce::analysis::ThicknessResult& mine,
+                                                    const Distribution& distribution);
 
 // Distributed runs, collective: "samples measured per rank: a + b = n" (per vertex, a group of
 // coincident vertices is one sample), for the run report.

@@ -1,6 +1,7 @@
 #include "vtkPierceThickness.h"
 
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -146,22 +147,28 @@ int vtkPierceThickness::AnalyseSurfaces(
     }
   }
   pierce_vtk::VertexOwners owners;
+  pierce::analysis::ThicknessOptions measureOptions = options;
   if (surfaces.distributed)
   {
     if (!perCell)
     {
       owners = pierce_vtk::FindVertexOwners(surfaces);
     }
-    options.sample_mask = pierce_vtk::OwnSampleMask(surfaces, perCell, owners);
+    // Each rank measures its own samples; thin flags and regions come from the whole map,
+    // assembled below, so that they are those of a serial run.
+    measureOptions.sample_mask = pierce_vtk::OwnSampleMask(surfaces, perCell, owners);
+    measureOptions.min_thickness = 0.0;
+    measureOptions.max_thickness = std::numeric_limits<double>::infinity();
   }
 
   pierce_vtk::ProgressBridge progress(this, 0.05, 1.0);
   pierce::analysis::ThicknessResult result;
+  std::unique_ptr<pierce::Accel> accel;
   if (!pierce_vtk::RunOnEveryRank(this, run.distribution, [&] {
-        const pierce::Accel accel(surfaces.scene);
+        accel = std::make_unique<pierce::Accel>(surfaces.scene);
         run.timer.Stage("BVH build");
         this->UpdateProgress(0.05);
-        result = pierce::analysis::compute_thickness(accel, options, progress.Callback());
+        result = pierce::analysis::compute_thickness(*accel, measureOptions, progress.Callback());
         run.timer.Stage("trace");
       }))
   {
@@ -171,20 +178,25 @@ int vtkPierceThickness::AnalyseSurfaces(
   {
     return 1; // aborted: the executive hands out empty outputs
   }
+  if (surfaces.distributed)
+  {
+    run.info += "; " + pierce_vtk::DescribeSampleSplit(result, perCell, owners, run.distribution);
+    options.sample_mask = pierce_vtk::AllSampleMask(surfaces, perCell, owners);
+    const pierce::analysis::ThicknessResult mine = std::move(result);
+    if (!pierce_vtk::RunOnEveryRank(this, run.distribution, [&] {
+          result = pierce_vtk::AssembleThickness(*accel, options, mine, run.distribution);
+          run.timer.Stage("assemble");
+        }))
+    {
+      return 0;
+    }
+  }
   if (options.exact)
   {
     // Every rank the same arrays, whether or not its own samples lie on a B-rep.
     result.brep_faces.resize(result.size(), 0);
   }
-  if (surfaces.distributed)
-  {
-    run.info += "; " + pierce_vtk::DescribeSampleSplit(result, perCell, owners, run.distribution);
-    if (!perCell)
-    {
-      pierce_vtk::ShareVertexResults(surfaces, owners, run.distribution, result);
-    }
-  }
-  pierce_vtk::AttachThickness(result, run.surfaces);
+  pierce_vtk::AttachThickness(result, run.surfaces, surfaces.distributed && !perCell ? &owners : nullptr);
   pierce_vtk::StoreSurfaceOutput(surfaces, input, vtkDataObject::GetData(outputVector, 0));
   const std::vector<pierce::analysis::SolidThickness> statistics = surfaces.distributed
     ? pierce_vtk::GatherThicknessStatistics(surfaces, perCell, options, run.distribution)

@@ -81,6 +81,33 @@ ThicknessResult compute_thickness(const Accel& accel, const ThicknessOptions& op
   return res;
 }
 
+ThicknessResult assemble_thickness(const Accel& accel, const ThicknessOptions& opts,
+                                   std::span<const MeasuredSample> measured) {
+  detail::check_options(accel, opts);
+  ThicknessResult res;
+  const detail::SampleSet set = detail::build_samples(accel.scene(), opts, res);
+  auto key = [](std::uint32_t solid, std::uint32_t element) { return (std::uint64_t(solid) << 32) | element; };
+  std::vector<std::pair<std::uint64_t, std::size_t>> rows(measured.size());
+  for (std::size_t i = 0; i < measured.size(); ++i) rows[i] = {key(measured[i].solid, measured[i].element), i};
+  std::sort(rows.begin(), rows.end());
+  for (const detail::Sample& s : set.samples) {
+    const std::size_t k = s.out_index;
+    const auto found = std::lower_bound(rows.begin(), rows.end(), std::pair(key(res.solid[k], res.element[k]), std::size_t{0}));
+    if (found == rows.end() || found->first != key(res.solid[k], res.element[k]))
+      throw std::invalid_argument("assemble_thickness: no measured row for element " + std::to_string(res.element[k]) +
+                                  " of solid " + std::to_string(res.solid[k]));
+    const MeasuredSample& m = measured[found->second];
+    res.point[k] = m.point;
+    res.normal[k] = m.normal;
+    res.thickness[k] = m.thickness;
+    res.status[k] = m.status;
+    if (!res.brep_faces.empty()) res.brep_faces[k] = m.brep_faces;
+  }
+  detail::finish_statistics(accel.scene(), opts, set, res);
+  detail::find_regions(accel, opts, set, res);
+  return res;
+}
+
 ThicknessResult thickness_at(const Accel& accel, const std::vector<std::uint32_t>& solids,
                              const std::vector<Vec3d>& points, const std::vector<Vec3d>& normals,
                              const ThicknessOptions& opts, const Progress& progress) {

@@ -71,6 +71,12 @@ SolidTopo make_topo(const Scene& scene, std::uint32_t g, SampleAt per, const Thi
     for (auto v : geo.triangles[i]) t.around[fill[t.weld[v]]++] = i;
   t.row_of.assign(per == SampleAt::vertex ? geo.vertices.size() : geo.triangles.size(), kInvalidId);
   for (std::size_t i = range.first; i < range.second; ++i) t.row_of[res.element[i]] = std::uint32_t(i);
+  // A vertex without a row of its own (a sample mask left it to its coincident vertices, as in
+  // distributed runs where the cut's vertices exist once per process) stands for its group's row,
+  // so that connectivity and areas do not depend on how the vertices were split.
+  if (per == SampleAt::vertex)
+    for (std::uint32_t v = 0; v < geo.vertices.size(); ++v)
+      if (t.row_of[v] == kInvalidId) t.row_of[v] = t.row_of[t.weld[v]];
   return t;
 }
 
@@ -196,6 +202,14 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
     std::uint32_t root, extreme;
     std::size_t samples = 0;
   };
+  // A region counts sample points: per vertex, coincident vertices (one sample, copied) once.
+  // Its extreme is the most extreme sample, the lowest point (x, y, z) among equals, so that
+  // neither depends on the order of the rows.
+  auto counts_as_sample = [&](std::uint32_t i) {
+    if (opts.per != SampleAt::vertex) return true;
+    const std::uint32_t v = res.element[i];
+    return topo[topo_of[res.solid[i]]].weld[v] == v;
+  };
   std::vector<std::uint32_t> slot(n, kInvalidId);
   std::vector<Found> found;
   for (std::uint32_t i = 0; i < n; ++i) {
@@ -203,10 +217,11 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
     const std::uint32_t r = uf.find(i);
     if (slot[r] == kInvalidId) slot[r] = std::uint32_t(found.size()), found.push_back({r, i});
     Found& f = found[slot[r]];
-    ++f.samples;
-    const bool more = flag[i] == kThin ? res.thickness[i] < res.thickness[f.extreme]
-                                       : res.thickness[i] > res.thickness[f.extreme];
-    if (more) f.extreme = i;
+    f.samples += counts_as_sample(i);
+    const double t = res.thickness[i], best = res.thickness[f.extreme];
+    const bool more = flag[i] == kThin ? t < best : t > best;
+    const Vec3d p = res.point[i], q = res.point[f.extreme];
+    if (more || (t == best && std::tuple(p.x, p.y, p.z) < std::tuple(q.x, q.y, q.z))) f.extreme = i;
   }
   auto key = [&](const Found& f) {
     const Vec3d p = res.point[f.extreme];

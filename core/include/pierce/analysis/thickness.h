@@ -194,6 +194,24 @@ ThicknessAlong thickness_along(const Accel& accel, const std::vector<std::uint32
                                const std::vector<Ray>& rays, double max_distance, double tie_tolerance_rel = 1e-6,
                                KernelKind kernel = kDefaultKernel, const Progress& progress = {});
 
+// One measured row of a compute_thickness result, for assembling a map measured in parts.
+struct MeasuredSample {
+  std::uint32_t solid = 0, element = 0;
+  Vec3d point, normal;
+  double thickness = 0;
+  ThicknessStatus status = ThicknessStatus::ok;
+  std::uint8_t brep_faces = 0;
+};
+
+// What compute_thickness(accel, opts) returns, from rows already measured by compute_thickness
+// calls whose sample masks together select the samples of `opts` (distributed runs: each
+// process measures its part, then every process assembles the whole map). The samples' rows
+// are taken from `measured` instead of traced; copies, thin flags, statistics and regions are
+// computed as compute_thickness computes them. Throws std::invalid_argument when a sample of
+// `opts` has no row in `measured`.
+ThicknessResult assemble_thickness(const Accel& accel, const ThicknessOptions& opts,
+                                   std::span<const MeasuredSample> measured);
+
 // Thickness at given points (`pierce thickness --at`): each point is projected onto the boundary
 // of its solid (the closest point of its triangles; on CAD input then onto the exact face) and
 // measured there like a face sample with `opts` (method, max distance, exact surfaces...),

@@ -30,10 +30,10 @@ struct ThicknessRegion {
   std::uint32_t solid = 0;  // geometry id
   bool thick = false;       // a thick region (thickness above max_thickness), else a thin one
   double thickness = 0;     // the region's extreme: minimum (thin) or maximum (thick) thickness
-  Vec3d point;              // the sample point of that extreme sample
+  Vec3d point;              // the sample point of that extreme sample (the lowest x, y, z among equals)
   Vec3d exit;               // where its ray leaves: point - normal * thickness
   double area = 0;          // flagged surface area, both sides of the wall
-  std::size_t samples = 0;  // samples in the region
+  std::size_t samples = 0;  // sample points in the region (coincident vertices count once)
   // CAD input with exact surfaces: the B-rep faces (ExactSurfaces::face_of) of the triangles
   // that hold flagged area, ascending; empty for meshes.
   std::vector<std::uint32_t> faces;
