@@ -115,8 +115,8 @@ vtkSmartPointer<vtkPolyData> ToPolyData(const pierce::CadSolid& solid, int solid
 
 vtkPierceCADReader::vtkPierceCADReader()
   : FileName(nullptr)
-  , LinearDeflection(0.0)
-  , AngularDeflection(15.0)
+  , LinearDeflection(pierce::TessellationOptions{}.linear_deflection)
+  , AngularDeflection(pierce::TessellationOptions{}.angular_deflection_deg)
 {
   this->SetNumberOfInputPorts(0);
 }
