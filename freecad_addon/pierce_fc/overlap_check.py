@@ -24,10 +24,10 @@ KINDS = {
 
 
 class OverlapOptions:
-    def __init__(self, tolerance=1e-3, grid=64, deflection=0.0, angular_deflection=15.0, create_objects=True):
+    def __init__(self, tolerance=1e-3, grid=64, deflection=None, angular_deflection=None, create_objects=True):
         self.tolerance = tolerance    # mm: faces closer than this to each other's plane are coplanar
         self.grid = grid              # rays per axis side: grid x grid rays along x, y and z
-        self.deflection = deflection  # mm; 0 = 0.1% of the selection's diagonal
+        self.deflection = deflection  # mm; 0 = 0.1% of the selection's diagonal; None: Pierce's default
         self.angular_deflection = angular_deflection
         self.create_objects = create_objects
 
