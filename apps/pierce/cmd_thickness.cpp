@@ -38,7 +38,8 @@ using analysis::ThicknessResult;
 
 struct ThicknessCli {
   ModelArgs model;
-  std::string method = "ray", per = "vertex", kernel{kernel_name(kDefaultKernel)};
+  std::string method{enum_name(analysis::ThicknessOptions{}.method)}, per{enum_name(analysis::ThicknessOptions{}.per)},
+      kernel{kernel_name(kDefaultKernel)};
   std::string origin_offsets = "auto", offset_set = "center";
   double min_thickness = 0;
   double max_thickness = std::numeric_limits<double>::infinity();

@@ -23,6 +23,11 @@ def method_names():
     return tuple(_pierce().thickness_methods())
 
 
+def thickness_defaults():
+    """Pierce's default method and sampling (pierce.thickness_defaults(): the CLI's)."""
+    return dict(_pierce().thickness_defaults())
+
+
 def has_cad():
     """Whether this Pierce build reads CAD (OpenCASCADE): needed to sample on the exact B-rep."""
     return bool(getattr(_pierce(), "HAS_CAD", False))
@@ -34,11 +39,13 @@ def sampling_names():
 
 
 class ThicknessOptions:
-    def __init__(self, method="ray", per="face", deflection=None, angular_deflection=None, max_edge=None,
+    def __init__(self, method=None, per=None, deflection=None, angular_deflection=None, max_edge=None,
                  threshold=0.0, max_distance=math.inf, color_min=None, color_max=None, create_objects=True,
                  on_brep=None, keep_previous=False):
-        self.method = method          # ray | cone | sphere
-        self.per = per                # face (triangle centroids) | vertex
+        # None: Pierce's defaults (pierce.thickness_defaults(), the CLI's --method and --per).
+        defaults = _pierce().thickness_defaults() if method is None or per is None else {}
+        self.method = method or defaults["method"]  # ray | cone | sphere
+        self.per = per or defaults["per"]           # vertex | face (triangle centroids)
         # Tessellation: None takes the defaults every Pierce front end shares
         # (tessellate.tessellation_defaults(), the CLI's), so the same part gives the same samples.
         self.deflection = deflection  # mm; 0 = 0.1% of the selection's diagonal
@@ -97,6 +104,11 @@ class SolidThickness:
         return self.values[np.isfinite(self.values)]
 
     def percentile(self, q):
+        """Percentile q of the thickness: Pierce's own (as the CLI reports it) for the percentiles
+        it summarises, else of the valid values (the same linear interpolation)."""
+        for pq, value in self.stats.summary.percentiles:
+            if pq == q:
+                return float(value) if self.stats.summary.count else math.nan
         v = self.valid
         return float(np.percentile(v, q)) if len(v) else math.nan
 
@@ -344,8 +356,10 @@ def create_objects(doc, run):
 
 
 def sources_key(solids):
-    """The analysed solids of a result as one string: "Name:index" of each solid, sorted."""
-    return " ".join(sorted("%s:%d" % (s.meshed.ref.obj.Name, s.meshed.ref.index) for s in solids))
+    """The analysed solids of a result (SolidThickness or tessellate.MeshedSolid) as one string:
+    "Name:index" of each solid, sorted."""
+    refs = [getattr(s, "meshed", s).ref for s in solids]
+    return " ".join(sorted("%s:%d" % (r.obj.Name, r.index) for r in refs))
 
 
 def remove_previous(doc, analysis, sources):

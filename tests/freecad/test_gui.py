@@ -166,10 +166,11 @@ def body(c):
     Gui.Selection.addSelection(a)
     Gui.Selection.addSelection(b)
     panel.on_run()
-    rows = [panel.table.item(r, 0).text() for r in range(panel.table.rowCount())]
-    c.check(rows == ["Interpenetration"], "overlap table: %s (%s)" % (rows, panel.message.text()))
+    rows = [panel.table.item(r, 1).text() for r in range(panel.table.rowCount())]
+    c.check(rows == ["clash"], "overlap table: %s (%s)" % (rows, panel.message.text()))
     if rows:
         c.check(panel.table.item(0, 3).text() == "2.5", "depth column: %r" % panel.table.item(0, 3).text())
+        c.check(panel.table.item(0, 2).text() == "BoxA / BoxB", "solids column: %r" % panel.table.item(0, 2).text())
         Gui.Selection.clearSelection()
         panel.table.selectRow(0)
         QtWidgets.QApplication.processEvents()

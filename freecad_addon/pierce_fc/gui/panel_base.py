@@ -102,7 +102,12 @@ class PanelBase:
         """A group box called `title` added to `layout`; returns its form layout for the rows."""
         box = QtWidgets.QGroupBox(title)
         layout.addWidget(box)
-        return QtWidgets.QFormLayout(box)
+        form = QtWidgets.QFormLayout(box)
+        # In the default Combo View (264 px) a label and a wide field do not fit on one line: the
+        # field goes below its label.
+        form.setRowWrapPolicy(QtWidgets.QFormLayout.WrapLongRows)
+        form.setFieldGrowthPolicy(QtWidgets.QFormLayout.AllNonFixedFieldsGrow)
+        return form
 
     def results_table(self, layout, columns):
         """A read-only table with a header of `columns`, added to `layout`; rows are filled by

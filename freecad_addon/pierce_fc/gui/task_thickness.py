@@ -28,6 +28,12 @@ class ThicknessPanel(PanelBase):
                                "diameter function over 30 rays; sphere: largest inscribed ball")
         self.per = QtWidgets.QComboBox()
         self.per.addItems(["faces", "vertices"])
+        try:  # Pierce's default, as in the CLI and Python
+            defaults = thickness_map.thickness_defaults()
+            self.method.setCurrentText(defaults["method"])
+            self.per.setCurrentIndex(0 if defaults["per"] == "face" else 1)
+        except PierceUnavailable:
+            pass
         self.per.setToolTip("faces: one value per triangle; vertices: smooth colours (on the B-rep a vertex on "
                             "an edge shows the smaller of its faces' walls; on FreeCAD's mesh it uses an "
                             "averaged normal)")
