@@ -166,9 +166,10 @@ class OverlapRun:
 
     def summary(self):
         o = self.options
-        lines = ["Pierce overlap check of %s: %d solids; %d clash, %d contact, %d clearance (< %.4g mm) pair(s)" % (
+        lines = ["Pierce overlap check of %s: %d solids; %d clash, %d contact, %d clearance pair(s) (%s)" % (
             self.header(), len(self.model.solids), len(self.pairs_of_kind("clash")),
-            len(self.pairs_of_kind("contact")), len(self.pairs_of_kind("clearance")), o.clearance)]
+            len(self.pairs_of_kind("contact")), len(self.pairs_of_kind("clearance")),
+            "closer than %.4g mm" % o.clearance if o.clearance > 0 else "clearance off")]
         lines += ["  " + p.describe() for p in self.pairs or []]
         lines.append("Faces: %d interpenetrating pairs, %d contacts, %d coincident, %d duplicate" % (
             len(self.of_kind("interference")), len(self.of_kind("contact")), len(self.of_kind("coincident")),
@@ -302,8 +303,12 @@ def create_objects(doc, run):
         if shape is None:
             continue
         obj = doc.addObject("Part::Feature", "Overlap")
+        # Short labels: the pair's row in the table, or the solids' numbers (from 1) for faces
+        # without a pair; ending in a letter, so FreeCAD does not renumber them.
+        pair = next((p for p in run.pairs or [] if p.finding is f), None)
         numbers = {m.ref: k + 1 for k, m in enumerate(run.model.solids)}
-        obj.Label = "%s %d-%d" % (SHORT[f.kind], numbers.get(f.a, 0), numbers.get(f.b, 0))
+        obj.Label = ("Pair %d %s" % (pair.number, pair.kind) if pair is not None else
+                     "Solids %d, %d %s" % (numbers.get(f.a, 0), numbers.get(f.b, 0), SHORT[f.kind].lower()))
         obj.Shape = shape
         obj.addProperty("App::PropertyString", "Kind", "Pierce", "Finding kind").Kind = f.kind
         obj.addProperty("App::PropertyString", "Solids", "Pierce", "Solids involved").Solids = (

@@ -145,7 +145,9 @@ def brep_model(refs, deflection=0.0, angular_deflection_deg=15.0, max_edge=0.0, 
     stem = "selection"
     with tempfile.TemporaryDirectory(prefix="pierce_brep_") as d:
         path = os.path.join(d, stem + ".brep")
-        Part.makeCompound([ref.shape for ref in refs]).exportBrep(path)
+        # Copies: adding a shape to a compound marks its TShape as not free, which would change
+        # the user's solid.
+        Part.makeCompound([ref.shape.copy(False) for ref in refs]).exportBrep(path)
         if progress is not None and progress(len(refs), len(refs)) is False:
             raise pierce.Cancelled("stopped while writing the solids")
         info = pierce.add_model_files(scene, [path], linear_deflection=deflection,

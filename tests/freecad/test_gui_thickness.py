@@ -173,19 +173,43 @@ def body(c):
     px = view.getPointOnScreen(FreeCAD.Vector(*g.point))
     c.check(0 <= px[0] < size[0] and 0 <= px[1] < size[1], "the region's point is in the view: %s of %s" % (
         tuple(px), tuple(size)))
-    lo_box, hi_box = run.region_box(0)
-    corners = [view.getPointOnScreen(FreeCAD.Vector(x, y, z)) for x in (lo_box[0], hi_box[0])
-               for y in (lo_box[1], hi_box[1]) for z in (lo_box[2], hi_box[2])]
-    extent = max(max(p[0] for p in corners) - min(p[0] for p in corners),
-                 max(p[1] for p in corners) - min(p[1] for p in corners))
-    c.check(extent > 0.2 * min(size), "the region spans %d px of the %d px view" % (extent, min(size)))
-    shot = os.path.join(OUT, "freecad-thickness-region.png")
+    # Framed: the region's size (its box's half diagonal) spans a good part of the view.
+    centre, radius, _ = run.region_view(0)
+    right = view.getCameraNode().orientation.getValue().multVec(__import__("pivy").coin.SbVec3f(1, 0, 0))
+    ends = [view.getPointOnScreen(FreeCAD.Vector(*[c0 + sgn * radius * r for c0, r in zip(centre, right)]))
+            for sgn in (-1, 1)]
+    extent = abs(ends[1][0] - ends[0][0])
+    c.check(0.2 * min(size) < extent <= 1.0 * min(size), "the region (%.3g mm across) spans %d px of the %d px view" % (
+        2 * radius, extent, min(size)))
+    # Visible, not hidden behind other walls: picking the view at the region's point hits the map there.
     panel._highlight.clear()  # the highlight is drawn over everything: judge the map itself
-    view.saveImage(shot, 1000, 700, "White")
-    bands, vivid = hue_bands(shot)
-    c.check(bands["magenta"] * vivid > 0.05, "the thin region's magenta covers %.0f%% of the view" % (
-        100 * bands["magenta"] * vivid))
-    panel.show_region(0)  # highlight again for the window screenshot
+    QtWidgets.QApplication.processEvents()
+    # (Picked a little inside a triangle at the region's point: a pick exactly on a corner can miss.)
+    import numpy as np
+    m = run.solids[0].meshed
+    k = int(np.argmin(np.linalg.norm(m.vertices - np.asarray(g.point), axis=1)))
+    tri = m.triangles[np.nonzero((m.triangles == k).any(axis=1))[0][0]]
+    target = 0.9 * m.vertices[k] + 0.05 * m.vertices[tri[tri != k][0]] + 0.05 * m.vertices[tri[tri != k][1]]
+    tp = view.getPointOnScreen(FreeCAD.Vector(*target))
+    info = view.getObjectInfo((int(tp[0]), int(tp[1])))
+    hit = bool(info) and info.get("Object") == mesh_obj.Name and (
+        FreeCAD.Vector(info["x"], info["y"], info["z"]) - FreeCAD.Vector(*g.point)).Length <= 2 * radius
+    c.check(hit, "the thinnest region is in sight: the view picks %s, within %.3g mm of its point %s" % (
+        info, 2 * radius, tuple(g.point)))
+
+    # Choosing the pocket floor in the list frames it: its thin colour fills a good part of the view.
+    if floor:
+        panel.regions.setCurrentRow(floor[0])
+        QtWidgets.QApplication.processEvents()
+        c.check(panel.message.text().startswith("Region %d:" % (floor[0] + 1)), "row %d chosen: %r" % (
+            floor[0] + 1, panel.message.text()))
+        panel._highlight.clear()
+        shot = os.path.join(OUT, "freecad-thickness-region.png")
+        view.saveImage(shot, 1000, 700, "White")
+        bands, vivid = hue_bands(shot)
+        c.check(bands["magenta"] * vivid > 0.05, "the pocket floor's magenta covers %.0f%% of the view" % (
+            100 * bands["magenta"] * vivid))
+    panel.zoom_button.click()  # back to the thinnest, highlighted, for the window screenshot
     for _ in range(3):
         QtWidgets.QApplication.processEvents()
     c.check(mw.grab().save(os.path.join(OUT, "freecad-thickness-regions.png")), "window screenshot saved")

@@ -127,19 +127,19 @@ def body(c):
 
     # The default legend: the 2nd to 98th percentile of the samples without a threshold, 0 to 4x
     # the threshold with one; walls beyond an end are clamped, and the legend says so.
-    tall = solids.box(doc, "Tall", (2, 2, 40))
+    tall = solids.box(doc, "Tall", (2, 10, 100))  # walls 2 (most samples), 10, and 100 (under 2%)
     doc.recompute()
     run = thickness_map.run([tall], ThicknessOptions(per="face", max_edge="auto", create_objects=False))
     v = np.concatenate([s.valid for s in run.solids])
     lo, hi = run.color_range
     c.near(lo, float(np.percentile(v, 2)), 1e-12, "default legend low end is P2")
     c.near(hi, float(np.percentile(v, 98)), 1e-12, "default legend high end is P98")
-    c.check(hi < 40.0 and run.clamped == (False, True),
-            "the 40 mm end walls are clamped to the high end: range (%.4g, %.4g), clamped %s" % (lo, hi, run.clamped))
+    c.check(lo == 2.0 and hi == 10.0 and run.clamped == (False, True),
+            "the 100 mm end walls are clamped to the high end: range (%.4g, %.4g), clamped %s" % (lo, hi, run.clamped))
     c.check("P2 to P98" in run.summary() and "thicker walls drawn as its high end" in run.summary(),
             "the summary says how the legend was chosen: " + run.legend_text())
     run = thickness_map.run([tall], ThicknessOptions(per="face", threshold=1.5, create_objects=False))
-    c.check(run.color_range == (0.0, 6.0), "with a 1.5 mm threshold the legend is 0 to 6: %s" % (run.color_range,))
+    c.check(run.color_range == (0.0, 6.0) and run.clamped == (False, True), "with a 1.5 mm threshold the legend is 0 to 6: %s" % (run.color_range,))
     run = thickness_map.run([tall], ThicknessOptions(per="face", color_min=1.0, color_max=3.0, create_objects=False))
     c.check(run.color_range == (1.0, 3.0), "a legend range set by the user is kept: %s" % (run.color_range,))
 

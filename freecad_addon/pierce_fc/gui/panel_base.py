@@ -22,6 +22,9 @@ class PanelBase:
         self.form = QtWidgets.QWidget()
         self.form.setWindowTitle(self.TITLE)
         self.layout = QtWidgets.QVBoxLayout(self.form)
+        # The task view frames the panel already; its own margins would cost the default Combo
+        # View (264 px) the width of a field.
+        self.layout.setContentsMargins(0, 0, 0, 0)
         self.build_options(self.layout)
         row = QtWidgets.QHBoxLayout()
         self.run_button = QtWidgets.QPushButton(self.RUN_TEXT)

@@ -17,8 +17,10 @@ class ShotlinePanel(PanelBase):
 
     def build_options(self, layout):
         f = self.options_form(layout, "Ray")
-        self.mode_point = QtWidgets.QRadioButton("From a point, along a direction")
-        self.mode_grid = QtWidgets.QRadioButton("Grid through the selected face")
+        self.mode_point = QtWidgets.QRadioButton("Point and direction")
+        self.mode_point.setToolTip("One ray from a point along a direction")
+        self.mode_grid = QtWidgets.QRadioButton("Grid through a face")
+        self.mode_grid.setToolTip("A grid of rays entering through the selected face")
         self.mode_point.setChecked(True)
         self.origin = [double_spin(0.0, -1e9, 1e9, suffix="") for _ in range(3)]
         self.direction = [double_spin(v, -1e9, 1e9, suffix="") for v in (0.0, 0.0, 1.0)]
