@@ -72,3 +72,30 @@ def run_in_gui(name, body):
         os._exit(code)
 
     QtCore.QTimer.singleShot(0, main)
+
+
+def window_screenshot(path):
+    """Saves the FreeCAD window as the user sees it to `path`: under xvfb a grab of the window
+    leaves the OpenGL 3D view blank, so the view is rendered (saveImage) and drawn into its place.
+    Returns whether the file was written."""
+    import tempfile
+    import FreeCADGui as Gui
+    from PySide2 import QtCore, QtGui, QtWidgets
+    mw = Gui.getMainWindow()
+    for _ in range(3):
+        QtWidgets.QApplication.processEvents()
+    shot = mw.grab()
+    mdi = mw.findChild(QtWidgets.QMdiArea)
+    sub = mdi.activeSubWindow() if mdi is not None else None
+    view = getattr(Gui.ActiveDocument, "ActiveView", None) if Gui.ActiveDocument else None
+    if sub is not None and view is not None and hasattr(view, "saveImage"):
+        target = sub.widget().centralWidget() if hasattr(sub.widget(), "centralWidget") else sub.widget()
+        target = target or sub.widget()
+        rect = QtCore.QRect(target.mapTo(mw, QtCore.QPoint(0, 0)), target.size())
+        with tempfile.TemporaryDirectory() as d:
+            img = os.path.join(d, "view.png")
+            view.saveImage(img, rect.width(), rect.height(), "Current")
+            painter = QtGui.QPainter(shot)
+            painter.drawImage(rect, QtGui.QImage(img))
+            painter.end()
+    return shot.save(path)

@@ -42,3 +42,13 @@ def heatsink(doc, name="Heatsink"):
     cutter = Part.Face(wedge).extrude(FreeCAD.Vector(3 - 0.01, 0, 0))
     shape = shape.cut([pocket, cutter]).removeSplitter()
     return add(doc, name, shape.Solids[0])
+
+
+def bracket(doc, name="Bracket"):
+    """A 60 x 40 x 6 plate with a boss (radius 9, 18 tall) around a through hole (radius 5) and a
+    2 mm rib 12 tall: walls from 2 to 12 mm, curved and flat."""
+    plate = Part.makeBox(60, 40, 6)
+    boss = Part.makeCylinder(9, 18, FreeCAD.Vector(42, 20, 0))
+    hole = Part.makeCylinder(5, 18, FreeCAD.Vector(42, 20, 0))
+    rib = Part.makeBox(30, 2, 12, FreeCAD.Vector(4, 19, 0))
+    return add(doc, name, plate.fuse([boss, rib]).cut(hole).removeSplitter())

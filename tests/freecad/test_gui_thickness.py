@@ -111,8 +111,7 @@ def body(c):
             QtWidgets.QApplication.processEvents()
         bad, width = clipped_widgets(panel.form)
         c.check(not bad, "%s fits the %d px task view: %s" % (cls.__name__, width, bad))
-        shot = os.path.join(OUT, "freecad-panel-%s.png" % cls.__name__.replace("Panel", "").lower())
-        combo[0].grab().save(shot)
+        fc_check.window_screenshot(os.path.join(OUT, "freecad-panel-%s.png" % cls.__name__.replace("Panel", "").lower()))
         Gui.Control.closeDialog()
 
     # The first map with default options (one click).
@@ -141,7 +140,7 @@ def body(c):
         wide, ", ".join("%s %.0f%%" % (k, 100 * v) for k, v in sorted(bands.items()))))
     for _ in range(3):
         QtWidgets.QApplication.processEvents()
-    c.check(mw.grab().save(os.path.join(OUT, "freecad-thickness-default.png")), "window screenshot saved")
+    c.check(fc_check.window_screenshot(os.path.join(OUT, "freecad-thickness-default.png")), "window screenshot saved")
     bad, width = clipped_widgets(panel.form)
     c.check(not bad, "the panel with its results fits the %d px task view: %s" % (width, bad))
 
@@ -209,10 +208,11 @@ def body(c):
         bands, vivid = hue_bands(shot)
         c.check(bands["magenta"] * vivid > 0.05, "the pocket floor's magenta covers %.0f%% of the view" % (
             100 * bands["magenta"] * vivid))
-    panel.zoom_button.click()  # back to the thinnest, highlighted, for the window screenshot
-    for _ in range(3):
-        QtWidgets.QApplication.processEvents()
-    c.check(mw.grab().save(os.path.join(OUT, "freecad-thickness-regions.png")), "window screenshot saved")
+        panel.show_region(floor[0])  # highlighted again, for the window screenshot
+        c.check(fc_check.window_screenshot(os.path.join(OUT, "freecad-thickness-regions.png")),
+                "window screenshot saved")
+    panel.zoom_button.click()
+    c.check(fc_check.window_screenshot(os.path.join(OUT, "freecad-thickness-thinnest.png")), "window screenshot saved")
 
     # The caliper on the map: a click on the map over a fin (0.8 mm) reads the fin on the solid.
     view.viewIsometric()

@@ -1,6 +1,8 @@
-"""freecadcmd: one part, every front end, default options: the same samples and statistics.
+"""freecadcmd: the same part through every front end, default options: the same samples and
+statistics.
 
-The heatsink-like test part (solids.heatsink) is written as BREP; the CLI (`pierce thickness`,
+Each test part (the heatsink-like sheet part, flat faces; the bracket, with cylinders) is written as
+BREP; the CLI (`pierce thickness`,
 $PIERCE_CLI), Python (pierce.load + pierce.thickness) and, when $PIERCE_PVBATCH and
 $PIERCE_PARAVIEW_PLUGIN are set, ParaView (the plugin's CAD reader and Thickness filter under
 pvbatch) read that file; FreeCAD's thickness map runs on the Part object with default options. All
@@ -48,20 +50,24 @@ def stats(values):
 
 def body(c):
     import FreeCAD
-    import numpy as np
 
     import solids
-    from pierce_fc import thickness_map
     from pierce_fc.locate import import_pierce
-    from pierce_fc.thickness_map import ThicknessOptions
     pierce = import_pierce()
 
     doc = FreeCAD.newDocument("PierceSameNumbers")
-    part = solids.heatsink(doc)
-    doc.recompute()
-    path = os.path.join(OUT, "same_numbers_heatsink.brep")
-    part.Shape.exportBrep(path)
+    for make in (solids.heatsink, solids.bracket):
+        part = make(doc)
+        doc.recompute()
+        compare(c, pierce, part)
 
+
+def compare(c, pierce, part):
+    import numpy as np
+    from pierce_fc import thickness_map
+    from pierce_fc.thickness_map import ThicknessOptions
+    path = os.path.join(OUT, "same_numbers_%s.brep" % part.Name)
+    part.Shape.exportBrep(path)
     results = {}
     run = thickness_map.run([part], ThicknessOptions(create_objects=False))
     s = run.solids[0]
@@ -81,7 +87,7 @@ def body(c):
     cli = os.environ.get("PIERCE_CLI")
     c.check(bool(cli) and os.path.exists(cli), "the CLI is given: %r" % cli)
     if cli:
-        out = os.path.join(OUT, "same_numbers_heatsink.json")
+        out = os.path.join(OUT, "same_numbers_%s.json" % part.Name)
         p = subprocess.run([cli, "thickness", path, "-o", out], capture_output=True, text=True)
         c.check(p.returncode == 0, "pierce thickness ran: %s" % p.stderr.strip())
         if p.returncode == 0:
@@ -105,13 +111,13 @@ def body(c):
         print("ParaView not compared: PIERCE_PVBATCH / PIERCE_PARAVIEW_PLUGIN not set", flush=True)
 
     for name, r in sorted(results.items()):
-        print("%-8s samples %d, min %.9g, median %.9g, P95 %.9g" % ((name,) + tuple(r)), flush=True)
+        print("%s %-8s samples %d, min %.9g, median %.9g, P95 %.9g" % ((part.Label, name) + tuple(r)), flush=True)
     ref = results["Python"]
     for name, r in sorted(results.items()):
-        c.check(r[0] == ref[0], "%s: %d samples, Python %d" % (name, r[0], ref[0]))
+        c.check(r[0] == ref[0], "%s %s: %d samples, Python %d" % (part.Label, name, r[0], ref[0]))
         for k, what in ((1, "min"), (2, "median"), (3, "P95")):
-            c.check(abs(r[k] - ref[k]) <= 1e-9 * max(1.0, abs(ref[k])), "%s %s %.12g, Python %.12g" % (
-                name, what, r[k], ref[k]))
+            c.check(abs(r[k] - ref[k]) <= 1e-9 * max(1.0, abs(ref[k])), "%s %s %s %.12g, Python %.12g" % (
+                part.Label, name, what, r[k], ref[k]))
     c.check(len(freecad_values) == len(python_values) and bool(np.allclose(freecad_values, python_values,
                                                                            rtol=1e-12, atol=0)),
             "FreeCAD and Python give the same sorted values")

@@ -112,6 +112,41 @@ class PanelBase:
         form.setFieldGrowthPolicy(QtWidgets.QFormLayout.AllNonFixedFieldsGrow)
         return form
 
+    def collapsible_form(self, layout, title, expanded=False):
+        """A form under a button `title` that shows or hides it (hidden unless `expanded`), added
+        to `layout`: options most runs leave alone, so that the results fit on the first screen.
+        Returns the form layout for the rows."""
+        button = QtWidgets.QToolButton()
+        button.setText(title)
+        button.setCheckable(True)
+        button.setChecked(expanded)
+        button.setToolButtonStyle(QtCore.Qt.ToolButtonTextBesideIcon)
+        button.setArrowType(QtCore.Qt.DownArrow if expanded else QtCore.Qt.RightArrow)
+        button.setAutoRaise(True)
+        box = QtWidgets.QGroupBox()
+        box.setVisible(expanded)
+
+        def toggle(on):
+            box.setVisible(on)
+            button.setArrowType(QtCore.Qt.DownArrow if on else QtCore.Qt.RightArrow)
+        button.toggled.connect(toggle)
+        layout.addWidget(button)
+        layout.addWidget(box)
+        form = QtWidgets.QFormLayout(box)
+        form.setRowWrapPolicy(QtWidgets.QFormLayout.WrapLongRows)
+        form.setFieldGrowthPolicy(QtWidgets.QFormLayout.AllNonFixedFieldsGrow)
+        form.toggle_button = button
+        return form
+
+    def scroll_to(self, widget):
+        """Scrolls the task view so that `widget` (a result) is in sight."""
+        area = self.form.parent()
+        while area is not None and not isinstance(area, QtWidgets.QScrollArea):
+            area = area.parent()
+        if area is not None:
+            QtWidgets.QApplication.processEvents()
+            area.ensureWidgetVisible(widget, 0, 0)
+
     def results_table(self, layout, columns):
         """A read-only table with a header of `columns`, added to `layout`; rows are filled by
         show_result()."""

@@ -36,10 +36,11 @@ class OverlapPanel(PanelBase):
                                          "'Overlap check' (replaced when checking the same solids again)")
         f.addRow(self.whole_document)
         f.addRow("Clearance", self.clearance)
-        f.addRow("Coplanar tolerance", self.tolerance)
-        f.addRow("Rays per side", self.grid)
-        f.addRow("Deflection", self.deflection)
         f.addRow(self.markers)
+        more = self.collapsible_form(layout, "More options")
+        more.addRow("Coplanar tolerance", self.tolerance)
+        more.addRow("Rays per side", self.grid)
+        more.addRow("Deflection", self.deflection)
 
     def build_results(self, layout):
         self.header = QtWidgets.QLabel("")
@@ -89,6 +90,7 @@ class OverlapPanel(PanelBase):
         self.summary.setPlainText(text)
         self.report(text)
         self.set_message("%d pair(s): mm = clash depth or gap." % len(run.pairs))
+        self.scroll_to(self.table)
 
     def on_row(self):
         rows = {i.row() for i in self.table.selectedItems()}

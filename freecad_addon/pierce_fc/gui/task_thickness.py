@@ -46,9 +46,15 @@ class ThicknessPanel(PanelBase):
                                             % ((thickness_map.THRESHOLD_SPAN,) + thickness_map.DEFAULT_PERCENTILES))
         self.range_min = double_spin(0.0, -1e9, 1e9)
         self.range_max = double_spin(10.0, -1e9, 1e9)
-        self.range_min.setEnabled(False)
-        self.range_max.setEnabled(False)
-        self.auto_range.toggled.connect(lambda on: (self.range_min.setEnabled(not on), self.range_max.setEnabled(not on)))
+        # The range fields show only while the automatic legend is off.
+        self.range_box = QtWidgets.QWidget()
+        rf = QtWidgets.QFormLayout(self.range_box)
+        rf.setContentsMargins(0, 0, 0, 0)
+        rf.setRowWrapPolicy(QtWidgets.QFormLayout.WrapLongRows)
+        rf.addRow("Legend min", self.range_min)
+        rf.addRow("Legend max", self.range_max)
+        self.range_box.setVisible(False)
+        self.auto_range.toggled.connect(lambda on: self.range_box.setVisible(not on))
         self.hide_sources = check_box("Hide the analysed solids", True)
         self.keep_previous = check_box("Keep previous results", False,
                                        tooltip="Otherwise a new map replaces the previous thickness map of the "
@@ -57,13 +63,12 @@ class ThicknessPanel(PanelBase):
         f.addRow("Samples", self.per)
         f.addRow("Thin below", self.threshold)
         f.addRow(self.auto_range)
-        f.addRow("Legend min", self.range_min)
-        f.addRow("Legend max", self.range_max)
+        f.addRow(self.range_box)
         f.addRow(self.hide_sources)
         f.addRow(self.keep_previous)
 
         # Meshing: the same defaults as the CLI and Python (pierce.tessellation_defaults()).
-        m = self.options_form(layout, "Mesh")
+        m = self.collapsible_form(layout, "Mesh options")
         defaults = _tessellation_defaults()
         self.deflection = double_spin(defaults["linear_deflection"], 0.0, 1e6, special="auto", step=0.01)
         self.deflection.setToolTip("Largest distance between the surface and its triangles; auto: 0.1% of the "
@@ -202,6 +207,7 @@ class ThicknessPanel(PanelBase):
         else:
             self.regions_label.setText("Thin regions: set 'Thin below' to list them.")
         self.zoom_button.setEnabled(any(s.stats.summary.count for s in run.solids))
+        self.scroll_to(self.regions if regions else self.legend)
         mins = [s.stats.summary.min for s in run.solids if s.stats.summary.count]
         self.set_message("Thickness of %d solid(s): minimum %.4g mm. Results: '%s' in the tree." % (
             len(run.solids), min(mins) if mins else math.nan, run.group.Label if run.group else "-"))
