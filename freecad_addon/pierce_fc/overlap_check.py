@@ -162,12 +162,14 @@ class OverlapRun:
         for o in objs:
             n = sum(1 for m in self.model.solids if m.ref.obj is o)
             parts.append("'%s' (%d solids)" % (o.Label, n) if n > 1 else "'%s'" % o.Label)
+        if len(objs) > 1:
+            parts[-1] += "; %d solids" % len(self.model.solids)
         return ", ".join(parts)
 
     def summary(self):
         o = self.options
-        lines = ["Pierce overlap check of %s: %d solids; %d clash, %d contact, %d clearance pair(s) (%s)" % (
-            self.header(), len(self.model.solids), len(self.pairs_of_kind("clash")),
+        lines = ["Pierce overlap check of %s: %d clash, %d contact, %d clearance pair(s) (%s)" % (
+            self.header(), len(self.pairs_of_kind("clash")),
             len(self.pairs_of_kind("contact")), len(self.pairs_of_kind("clearance")),
             "closer than %.4g mm" % o.clearance if o.clearance > 0 else "clearance off")]
         lines += ["  " + p.describe() for p in self.pairs or []]

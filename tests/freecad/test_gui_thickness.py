@@ -47,35 +47,6 @@ def hue_bands(path):
     return {k: v / float(max(vivid, 1)) for k, v in bands.items()}, vivid / float(max(total, 1))
 
 
-def clipped_widgets(form):
-    """Visible widgets of a task panel that reach past the visible width of the task view, or are
-    narrower than their minimum size hint (their text or buttons cut off): [(name, why)]."""
-    from PySide2 import QtWidgets
-    area = form.parent()
-    while area is not None and not isinstance(area, QtWidgets.QScrollArea):
-        area = area.parent()
-    viewport = area.viewport() if area is not None else form
-    width = viewport.width()
-    out = []
-    if area is not None and area.horizontalScrollBar().maximum() > 0:
-        out.append(("task view", "scrolls sideways by %d px" % area.horizontalScrollBar().maximum()))
-    for w in [form] + form.findChildren(QtWidgets.QWidget):
-        if not w.isVisibleTo(form) or isinstance(w, (QtWidgets.QScrollBar,)) or w.width() == 0:
-            continue
-        if w.parent() is not None and isinstance(w.parent(), (QtWidgets.QAbstractScrollArea,)) and w is not form:
-            continue  # viewports and scroll bars of lists and text boxes scroll their own content
-        left = w.mapTo(viewport, w.rect().topLeft()).x()
-        right = left + w.width()
-        name = "%s %r" % (type(w).__name__, (w.text() if hasattr(w, "text") and callable(w.text) else
-                                            w.title() if hasattr(w, "title") else w.objectName()))
-        if left < 0 or right > width + 1:
-            out.append((name, "spans x %d..%d of a %d px view" % (left, right, width)))
-        hint = w.minimumSizeHint()
-        if hint.isValid() and w.width() + 1 < hint.width() and not (isinstance(w, QtWidgets.QLabel) and w.wordWrap()):
-            out.append((name, "%d px wide, needs %d" % (w.width(), hint.width())))
-    return out, width
-
-
 def body(c):
     import FreeCAD
     import FreeCADGui as Gui
@@ -109,7 +80,7 @@ def body(c):
         Gui.Control.showDialog(panel)
         for _ in range(3):
             QtWidgets.QApplication.processEvents()
-        bad, width = clipped_widgets(panel.form)
+        bad, width = fc_check.clipped_widgets(panel.form)
         c.check(not bad, "%s fits the %d px task view: %s" % (cls.__name__, width, bad))
         fc_check.window_screenshot(os.path.join(OUT, "freecad-panel-%s.png" % cls.__name__.replace("Panel", "").lower()))
         Gui.Control.closeDialog()
@@ -141,7 +112,7 @@ def body(c):
     for _ in range(3):
         QtWidgets.QApplication.processEvents()
     c.check(fc_check.window_screenshot(os.path.join(OUT, "freecad-thickness-default.png")), "window screenshot saved")
-    bad, width = clipped_widgets(panel.form)
+    bad, width = fc_check.clipped_widgets(panel.form)
     c.check(not bad, "the panel with its results fits the %d px task view: %s" % (width, bad))
 
     # Thin below 0.15: the 0.1 mm pocket floor is a region; re-running replaced the first map.

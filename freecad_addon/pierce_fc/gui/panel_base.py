@@ -60,7 +60,7 @@ class PanelBase:
     # --- running ---
     def set_message(self, text, error=False):
         self.message.setStyleSheet("color: #b00020;" if error else "")
-        self.message.setText(text)
+        self.message.setText(wrappable(text))
 
     def on_run(self):
         from ..locate import PierceUnavailable, import_pierce
@@ -195,6 +195,14 @@ class PanelBase:
 
     def isAllowedAlterDocument(self):
         return True
+
+
+def wrappable(text):
+    """`text` with a zero-width space after each '_', '-', '/' and '.', so that a word-wrapped
+    label can break long names (a STEP part's name has no spaces) instead of widening the panel."""
+    for ch in "_-/.":
+        text = text.replace(ch, ch + "\u200b")
+    return text
 
 
 def selected_objects():

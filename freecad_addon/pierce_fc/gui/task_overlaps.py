@@ -3,7 +3,7 @@ import FreeCADGui as Gui
 
 from .. import overlap_check
 from ..overlap_check import OverlapOptions
-from .panel_base import PanelBase, check_box, double_spin
+from .panel_base import PanelBase, check_box, double_spin, wrappable
 from .qt import QtWidgets
 from .view import Highlight, frame
 
@@ -83,9 +83,9 @@ class OverlapPanel(PanelBase):
                 item.setToolTip(p.describe())
                 self.table.setItem(r, col, item)
         self.table.resizeColumnsToContents()
-        self.header.setText("%s: %d solids. %d clash, %d contact, %d clearance. Choose a row to see it." % (
-            run.header(), len(run.model.solids), len(run.pairs_of_kind("clash")), len(run.pairs_of_kind("contact")),
-            len(run.pairs_of_kind("clearance"))))
+        self.header.setText(wrappable("%s: %d clash, %d contact, %d clearance. Choose a row to see it." % (
+            run.header(), len(run.pairs_of_kind("clash")), len(run.pairs_of_kind("contact")),
+            len(run.pairs_of_kind("clearance")))))
         text = run.summary()
         self.summary.setPlainText(text)
         self.report(text)
@@ -117,6 +117,11 @@ class OverlapPanel(PanelBase):
             vo.Transparency = 20 if any(o is x for x in involved) else 85
         points = [pair.point] + ([pair.point_b] if pair.point_b else [])
         segments = [(pair.point, pair.point_b)] if pair.point_b else []
+        if pair.finding is not None:  # the shared triangles of a contact, the deepest interval of a clash
+            for tri in pair.finding.triangles:
+                segments.extend((tri[k], tri[(k + 1) % 3]) for k in range(3))
+            if pair.finding.segment is not None:
+                segments.append(pair.finding.segment)
         self._highlight.show(segments, points)
         sizes = [min(r.shape.BoundBox.XLength, r.shape.BoundBox.YLength, r.shape.BoundBox.ZLength)
                  for r in (pair.a, pair.b)]
