@@ -88,7 +88,7 @@ def compare(c, pierce, part):
     c.check(bool(cli) and os.path.exists(cli), "the CLI is given: %r" % cli)
     if cli:
         out = os.path.join(OUT, "same_numbers_%s.json" % part.Name)
-        p = subprocess.run([cli, "thickness", path, "-o", out], capture_output=True, text=True)
+        p = subprocess.run([cli, "thickness", path, "-o", out, "--force"], capture_output=True, text=True)
         c.check(p.returncode == 0, "pierce thickness ran: %s" % p.stderr.strip())
         if p.returncode == 0:
             j = json.load(open(out))
