@@ -195,9 +195,9 @@ class ThicknessRun:
         if o.color_min is not None or o.color_max is not None:
             how = "as set"
         elif o.threshold > 0:
-            how = "default: 0 to %g x the thin threshold" % THRESHOLD_SPAN
+            how = "default: 0 to %g x the thin threshold" % _pierce().COLOR_RANGE_THIN_FACTOR
         else:
-            how = "default: P%g to P%g of the samples" % DEFAULT_PERCENTILES
+            how = "default: P%g to P%g of the samples" % tuple(_pierce().COLOR_RANGE_PERCENTILES)
         clamped = [what for what, c in zip(("thinner walls drawn as its low end", "thicker walls drawn as its high "
                                             "end"), self.clamped) if c]
         return "Legend %.4g to %.4g mm (%s)%s" % (lo, hi, how, "; " + ", ".join(clamped) if clamped else "")
@@ -271,25 +271,12 @@ def compute(objects, options, progress=None, cancel=None):
                         thin_regions=list(res.thin_regions), clamped=clamped)
 
 
-# The default legend with a thin threshold T spans 0 to THRESHOLD_SPAN x T: thin walls are magenta,
-# walls up to a few times T get the ramp's colours, thicker ones the blue end.
-THRESHOLD_SPAN = 4.0
-# Without a threshold, the default legend spans these percentiles of the valid samples, so that a
-# few slivers or one long line of sight do not squeeze every other wall into one colour.
-DEFAULT_PERCENTILES = (2.0, 98.0)
-
-
 def default_color_range(valid, threshold=0.0):
-    """The legend's default (lo, hi) for the valid thickness values: with a thin threshold T > 0,
-    0 to THRESHOLD_SPAN * T; otherwise the DEFAULT_PERCENTILES of the values. Values outside are
-    drawn in the colour of the nearer end (clamped)."""
-    if threshold > 0:
-        return 0.0, THRESHOLD_SPAN * threshold
-    valid = np.asarray(valid, dtype=float)
-    if not len(valid):
-        return 0.0, 1.0
-    lo, hi = (float(v) for v in np.percentile(valid, DEFAULT_PERCENTILES))
-    return lo, hi
+    """The legend's default (lo, hi) for the valid thickness values, as every Pierce front end
+    chooses it (pierce.default_color_range): with a thin threshold T > 0, 0 to
+    pierce.COLOR_RANGE_THIN_FACTOR x T; otherwise the pierce.COLOR_RANGE_PERCENTILES of the values.
+    Values outside are drawn in the colour of the nearer end (clamped)."""
+    return tuple(_pierce().default_color_range([float(v) for v in valid], float(threshold)))
 
 
 def create_objects(doc, run):

@@ -15,7 +15,8 @@ from . import _core
 from ._core import *  # noqa: F401,F403  (Scene, Geometry, gen, kernels, analyses, errors, ...)
 from ._core import CancelToken, Cancelled, InputError, Scene, gen, is_exact, kernels  # noqa: F401
 
-__all__ = ["Scene", "Geometry", "gen", "load", "tessellation_defaults", "thickness_defaults", "load_mesh", "load_rays", "mesh_report",
+__all__ = ["Scene", "Geometry", "gen", "load", "tessellation_defaults", "thickness_defaults",
+           "default_color_range", "COLOR_RANGE_THIN_FACTOR", "COLOR_RANGE_PERCENTILES", "load_mesh", "load_rays", "mesh_report",
            "Hits", "trace", "kernels", "is_exact",
            "thickness", "thickness_at", "thickness_along", "THICKNESS_STATUS",
            "coplanar_overlaps", "ray_overlaps", "axis_grid_rays", "triangle_overlap_arrays", "clearance",

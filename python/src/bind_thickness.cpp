@@ -187,6 +187,17 @@ void bind_thickness(pyb::module_& m) {
   m.def("thickness_methods", [] { return enum_names<ThicknessMethod>(); },
         "Names of the thickness methods (thickness(method=...)).");
   m.def(
+      "default_color_range",
+      [](const std::vector<double>& values, double min_thickness) {
+        return default_color_range(values, min_thickness);
+      },
+      pyb::arg("values"), pyb::arg("min_thickness") = 0.0,
+      "(lo, hi): the colour range every front end gives a thickness map by default: with a thin threshold\n"
+      "min_thickness > 0, 0 to COLOR_RANGE_THIN_FACTOR x min_thickness; otherwise the COLOR_RANGE_PERCENTILES\n"
+      "of the finite values. Values outside take the colour of the nearer end.");
+  m.attr("COLOR_RANGE_THIN_FACTOR") = kColorRangeThinFactor;
+  m.attr("COLOR_RANGE_PERCENTILES") = pyb::make_tuple(kColorRangePercentiles[0], kColorRangePercentiles[1]);
+  m.def(
       "thickness_defaults",
       [] {
         const ThicknessOptions o;

@@ -7,6 +7,7 @@
 
 #include "pierce/analysis/thickness.h"
 
+class vtkFieldData;
 class vtkTable;
 
 namespace pierce_vtk {
@@ -18,6 +19,13 @@ struct Surfaces;
 // solid's surface, and BRepFaces when the result has them (CAD input on its B-rep: the faces
 // sampled at the element, 2 or more at a vertex on an edge); Thickness becomes the active scalars.
 void AttachThickness(const pierce::analysis::ThicknessResult& result, Surfaces& surfaces);
+
+// Field data: the region table, one tuple per Region id (thin regions, then thick ones):
+// RegionThick, RegionSolid, RegionThickness, RegionArea, RegionSamples, RegionPoint, RegionExit; and
+// ThicknessColorRange, the default colour range (default_color_range of the finite thickness
+// values and options.min_thickness).
+void WriteRegionTable(const pierce::analysis::ThicknessResult& result, const pierce::analysis::ThicknessOptions& options,
+                      vtkFieldData* field);
 
 // One row per solid: SolidId, Name, Elements, Valid, NoExit, NoNormal, Thin, Tessellation,
 // OnBRep (1: measured on the exact B-rep), Min, Max, Mean and the percentiles as P<q> (one column

@@ -41,9 +41,9 @@ class ThicknessPanel(PanelBase):
         self.threshold.setToolTip("Samples strictly thinner than this are coloured magenta and grouped into "
                                   "thin regions, listed below thinnest first")
         self.auto_range = check_box("Automatic legend", True,
-                                    tooltip="With a thin threshold T: 0 to %g x T; otherwise the %gth to %gth "
-                                            "percentile of the samples. Walls beyond an end take its colour"
-                                            % ((thickness_map.THRESHOLD_SPAN,) + thickness_map.DEFAULT_PERCENTILES))
+                                    tooltip="With a thin threshold T: 0 to 4 x T; otherwise the 2nd to 98th "
+                                            "percentile of the samples (pierce.default_color_range, as the CLI "
+                                            "and ParaView). Walls beyond an end take its colour")
         self.range_min = double_spin(0.0, -1e9, 1e9)
         self.range_max = double_spin(10.0, -1e9, 1e9)
         # The range fields show only while the automatic legend is off.
