@@ -1,8 +1,11 @@
-"""ParaView's messages read as plain text when stderr is not a terminal: pvbatch loads the plugin
-and opens a file that is not STEP, with TERM naming a colour terminal and stderr a pipe; the error
-must be there, without ANSI colour codes.
+"""ParaView's messages: plain text when stderr is not a terminal, one warning per problem.
 
-    python3 check_plain_log.py --pvbatch pvbatch --plugin PierceParaView.so --out DIR
+- pvbatch loads the plugin and opens a file that is not STEP, with TERM naming a colour terminal
+  and stderr a pipe: the error must be there, without ANSI colour codes;
+- it opens a solid whose first tessellation folds (pierce_make_test_models' folded.brep), runs
+  Pierce Thickness, then makes the reader read the file again: the fold warning appears once.
+
+    python3 check_plain_log.py --pvbatch pvbatch --plugin PierceParaView.so --make-models BIN --out DIR
 """
 import argparse
 import os
@@ -16,10 +19,22 @@ LoadPlugin(sys.argv[1], ns=globals())
 OpenDataFile(sys.argv[2]).UpdatePipeline()
 """
 
+FOLD_SCRIPT = """
+import sys
+from paraview.simple import LoadPlugin, OpenDataFile
+LoadPlugin(sys.argv[1], ns=globals())
+reader = OpenDataFile(sys.argv[2])
+thickness = PierceThickness(Input=reader)
+thickness.UpdatePipeline()
+reader.GetClientSideObject().Modified()  # read again, same file and options
+reader.SMProxy.MarkModified(reader.SMProxy)
+thickness.UpdatePipeline()
+"""
+
 
 def main():
     p = argparse.ArgumentParser()
-    for name in ("pvbatch", "plugin", "out"):
+    for name in ("pvbatch", "plugin", "make-models", "out"):
         p.add_argument("--" + name, required=True)
     args = p.parse_args()
     script = os.path.join(args.out, "plain_log.py")
@@ -33,6 +48,20 @@ def main():
     plain = "\x1b[" not in text
     print("error reported: %s; ANSI codes: %s" % (found, not plain))
     if not (found and plain):
+        print(text[-2000:])
+        return 1
+
+    models = os.path.join(args.out, "models")
+    os.makedirs(models, exist_ok=True)
+    subprocess.run([args.make_models, models], check=True, capture_output=True)
+    script = os.path.join(args.out, "fold_once.py")
+    open(script, "w").write(FOLD_SCRIPT)
+    run = subprocess.run([args.pvbatch, script, args.plugin, os.path.join(models, "folded.brep")],
+                         capture_output=True, text=True)
+    text = run.stdout + run.stderr
+    folds = text.count("folded triangles on")
+    print("fold warnings: %d" % folds)
+    if run.returncode != 0 or folds != 1:
         print(text[-2000:])
         return 1
     print("plain log ok")
