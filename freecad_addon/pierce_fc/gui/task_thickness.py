@@ -8,9 +8,9 @@ from .. import thickness_map
 from ..locate import PierceUnavailable
 from ..thickness_map import ThicknessOptions
 from .legend import Legend
-from .view import Highlight, frame
 from .panel_base import PanelBase, check_box, double_spin
 from .qt import QtWidgets
+from .view import Highlight, frame
 
 
 class ThicknessPanel(PanelBase):
