@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <tuple>
 #include <memory>
 #include <mutex>
 
@@ -38,7 +39,8 @@ using analysis::ThicknessResult;
 
 struct ThicknessCli {
   ModelArgs model;
-  std::string method = "ray", per = "vertex", kernel{kernel_name(kDefaultKernel)};
+  std::string method{enum_name(analysis::ThicknessOptions{}.method)}, per{enum_name(analysis::ThicknessOptions{}.per)},
+      kernel{kernel_name(kDefaultKernel)};
   std::string origin_offsets = "auto", offset_set = "center";
   double min_thickness = 0;
   double max_thickness = std::numeric_limits<double>::infinity();
@@ -342,10 +344,16 @@ bool write_png(const Accel& accel, const ThicknessResult& r, const ThicknessCli&
   FalseColourOptions fo;
   parse_picture_size("--png-size", o.png_size, fo.width, fo.height);
   fo.view_dir = parse_view_direction("--png-view", o.png_view);
+  // The default colour range of every front end (FreeCAD's legend, ParaView's ThicknessColorRange).
+  std::tie(fo.range_min, fo.range_max) = analysis::default_color_range(r.thickness, o.min_thickness);
   const auto img = write_picture(accel, thickness_field(accel.scene(), r), fo, o.png, o.force, o.progress);
   if (!img) return false;
-  std::printf("picture %s: %dx%d, colour range %g .. %g (grey: no thickness%s)\n", o.png.c_str(), img->width,
-              img->height, img->range_min, img->range_max, o.min_thickness > 0 ? ", red: thin" : "");
+  const std::string how = o.min_thickness > 0
+    ? "0 to " + exact_number(analysis::kColorRangeThinFactor) + " x --min"
+    : "P" + exact_number(analysis::kColorRangePercentiles[0]) + " to P" + exact_number(analysis::kColorRangePercentiles[1]);
+  std::printf("picture %s: %dx%d, colour range %g .. %g (%s; beyond it: the end's colour; grey: no thickness%s)\n",
+              o.png.c_str(), img->width, img->height, img->range_min, img->range_max, how.c_str(),
+              o.min_thickness > 0 ? ", red: thin" : "");
   return true;
 }
 

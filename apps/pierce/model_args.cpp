@@ -24,6 +24,11 @@ void add_model_args(CLI::App* cmd, ModelArgs& args, bool several) {
                   "this many times; 0 = only flag the folds (thickness status tessellation)")
       ->check(CLI::Range(0, 10))
       ->capture_default_str();
+  cmd->add_option("--max-edge", args.tessellation.max_edge_length,
+                  "CAD tessellation: split triangle edges longer than this (model units) at their midpoints, for more "
+                  "samples on big flat faces; 0 = no splitting")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
 }
 
 std::vector<LoadedFile> load_models(Scene& scene, const ModelArgs& args) {

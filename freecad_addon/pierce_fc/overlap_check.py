@@ -15,6 +15,7 @@ from .errors import UserError
 from .progress import start_stage
 from .tessellate import mesh_objects
 
+SHORT = {"interference": "Clash", "contact": "Contact", "coincident": "Coincident", "duplicate": "Duplicate"}
 KINDS = {
     "interference": "Interpenetration",
     "contact": "Coplanar contact",
@@ -24,10 +25,14 @@ KINDS = {
 
 
 class OverlapOptions:
-    def __init__(self, tolerance=1e-3, grid=64, deflection=0.0, angular_deflection=15.0, create_objects=True):
+    def __init__(self, tolerance=1e-3, grid=64, deflection=None, angular_deflection=None, create_objects=True,
+                 clearance=0.0):
         self.tolerance = tolerance    # mm: faces closer than this to each other's plane are coplanar
         self.grid = grid              # rays per axis side: grid x grid rays along x, y and z
-        self.deflection = deflection  # mm; 0 = 0.1% of the selection's diagonal
+        # mm: pairs of solids closer than this are reported as "clearance" (0: clashes and contacts
+        # only), as `pierce overlaps --clearance D`.
+        self.clearance = clearance
+        self.deflection = deflection  # mm; 0 = 0.1% of the selection's diagonal; None: Pierce's default
         self.angular_deflection = angular_deflection
         self.create_objects = create_objects
 
@@ -36,6 +41,8 @@ class OverlapOptions:
             raise UserError("The coplanar tolerance must be a length >= 0.")
         if not 1 <= self.grid <= 4096:
             raise UserError("The ray grid must have between 1 and 4096 rays per side.")
+        if not (self.clearance >= 0 and math.isfinite(self.clearance)):
+            raise UserError("The clearance must be a length >= 0.")
 
 
 class Finding:
@@ -81,6 +88,53 @@ class Finding:
         return out
 
 
+PAIR_KINDS = ("clash", "contact", "clearance")
+
+
+class Pair:
+    """Two solids that clash, touch or come within the clearance (pierce.clearance; the CLI's
+    `pairs`): a, b are SolidRefs; number is the pair's row (from 1); gap (contact 0, clearance the
+    exact smallest distance), depth, overlap_length and volume (clash) are None where they do not
+    apply; point (and point_b: the closest point on b for a clearance) is where it is."""
+
+    def __init__(self, number, a, b, p):
+        self.number = number
+        self.a = a
+        self.b = b
+        self.kind = p.kind
+        nan = lambda x: None if x is None or math.isnan(x) else float(x)  # noqa: E731
+        self.gap = nan(p.gap)
+        self.depth = nan(p.depth)
+        self.overlap_length = nan(p.overlap_length)
+        self.volume = nan(p.volume)
+        self.point = tuple(float(x) for x in p.point)
+        pb = tuple(float(x) for x in p.point_b)
+        self.point_b = None if any(math.isnan(x) for x in pb) else pb
+        self.finding = None  # the matching interference or contact Finding, for its faces
+
+    def value_text(self):
+        if self.kind == "clash":
+            return "depth %.4g" % self.depth if self.depth is not None else "clash"
+        return "gap %.4g" % (self.gap or 0.0)
+
+    def describe(self):
+        p = self.point
+        text = "%d. %s: %s / %s, %s mm at (%.4g, %.4g, %.4g)" % (
+            self.number, self.kind, self.a.label, self.b.label, self.value_text(), p[0], p[1], p[2])
+        if self.kind == "clash" and self.overlap_length is not None:
+            text += ", longest overlap %.4g mm" % self.overlap_length
+            if self.volume is not None:
+                text += ", about %.4g mm^3 shared" % self.volume
+        return text
+
+    def selection(self):
+        """[(object, [sub-element names])]: the faces of the matching finding, else both solids'
+        objects."""
+        if self.finding is not None and any(subs for _, subs in self.finding.selection()):
+            return self.finding.selection()
+        return [(self.a.obj, []), (self.b.obj, [])] if self.a.obj is not self.b.obj else [(self.a.obj, [])]
+
+
 @dataclass(eq=False)
 class OverlapRun:
     options: OverlapOptions
@@ -90,15 +144,38 @@ class OverlapRun:
     coplanar_report: object  # pierce.CoplanarReport
     warnings: list
     group: object = None  # the document group of the result objects, once created
+    pairs: list = None  # Pair per pair of solids that clash, touch or come within the clearance
 
     def of_kind(self, kind):
         return [f for f in self.findings if f.kind == kind]
 
+    def pairs_of_kind(self, kind):
+        return [p for p in self.pairs or [] if p.kind == kind]
+
+    def header(self):
+        """The analysed objects, each once: "'Assembly' (36 solids)", or the solids' labels."""
+        objs = []
+        for m in self.model.solids:
+            if m.ref.obj not in objs:
+                objs.append(m.ref.obj)
+        parts = []
+        for o in objs:
+            n = sum(1 for m in self.model.solids if m.ref.obj is o)
+            parts.append("'%s' (%d solids)" % (o.Label, n) if n > 1 else "'%s'" % o.Label)
+        if len(objs) > 1:
+            parts[-1] += "; %d solids" % len(self.model.solids)
+        return ", ".join(parts)
+
     def summary(self):
-        lines = ["Pierce overlap check of %d solids: %d interpenetrating pairs, %d contacts, %d coincident, "
-                 "%d duplicate" % (len(self.model.solids), len(self.of_kind("interference")),
-                                   len(self.of_kind("contact")), len(self.of_kind("coincident")),
-                                   len(self.of_kind("duplicate")))]
+        o = self.options
+        lines = ["Pierce overlap check of %s: %d clash, %d contact, %d clearance pair(s) (%s)" % (
+            self.header(), len(self.pairs_of_kind("clash")),
+            len(self.pairs_of_kind("contact")), len(self.pairs_of_kind("clearance")),
+            "closer than %.4g mm" % o.clearance if o.clearance > 0 else "clearance off")]
+        lines += ["  " + p.describe() for p in self.pairs or []]
+        lines.append("Faces: %d interpenetrating pairs, %d contacts, %d coincident, %d duplicate" % (
+            len(self.of_kind("interference")), len(self.of_kind("contact")), len(self.of_kind("coincident")),
+            len(self.of_kind("duplicate"))))
         lines += ["  " + f.describe() for f in self.findings]
         lines += ["Pierce: warning: " + w for w in self.warnings]
         return "\n".join(lines)
@@ -181,7 +258,19 @@ def compute(objects, options, progress=None, cancel=None):
         findings.append(f)
     if rays.rays_ending_inside:
         warnings.append("%d rays ended inside a solid (open mesh?)" % rays.rays_ending_inside)
-    return OverlapRun(options, model, findings, rays, cop, warnings + model.warnings)
+
+    # Pairs by kind, as `pierce overlaps --clearance D` reports them.
+    start_stage(progress, "Pierce: contact, clash and clearance")
+    report = pierce.clearance(scene, clearance=options.clearance, grid=options.grid, progress=progress,
+                              cancel=cancel)
+    by_geom = {m.geom: m.ref for m in solids}
+    pairs = []
+    for p in report.pairs:
+        pair = Pair(len(pairs) + 1, by_geom[p.solid_a], by_geom[p.solid_b], p)
+        want = {"clash": "interference", "contact": "contact"}.get(pair.kind)
+        pair.finding = next((f for f in findings if f.kind == want and {f.a, f.b} == {pair.a, pair.b}), None)
+        pairs.append(pair)
+    return OverlapRun(options, model, findings, rays, cop, warnings + model.warnings, pairs=pairs)
 
 
 def create_objects(doc, run):
@@ -189,8 +278,15 @@ def create_objects(doc, run):
     shared triangles of each contact or coincidence in orange."""
     import FreeCAD
     import Part
+    from .thickness_map import remove_previous, sources_key
+    sources = sources_key(run.model.solids)
+    remove_previous(doc, "overlaps", sources)
     group = doc.addObject("App::DocumentObjectGroup", "PierceOverlaps")
     group.Label = "Overlap check"
+    for prop, value in (("PierceAnalysis", "overlaps"), ("PierceSources", sources)):
+        group.addProperty("App::PropertyString", prop, "Pierce", "Result of this analysis on these solids")
+        setattr(group, prop, value)
+        group.setEditorMode(prop, 1)
     for f in run.findings:
         shape = None
         if f.kind == "interference" and f.segment is not None:
@@ -209,7 +305,12 @@ def create_objects(doc, run):
         if shape is None:
             continue
         obj = doc.addObject("Part::Feature", "Overlap")
-        obj.Label = "%s %s-%s" % (f.title, f.a.label, f.b.label)
+        # Short labels: the pair's row in the table, or the solids' numbers (from 1) for faces
+        # without a pair; ending in a letter, so FreeCAD does not renumber them.
+        pair = next((p for p in run.pairs or [] if p.finding is f), None)
+        numbers = {m.ref: k + 1 for k, m in enumerate(run.model.solids)}
+        obj.Label = ("Pair %d %s" % (pair.number, pair.kind) if pair is not None else
+                     "Solids %d, %d %s" % (numbers.get(f.a, 0), numbers.get(f.b, 0), SHORT[f.kind].lower()))
         obj.Shape = shape
         obj.addProperty("App::PropertyString", "Kind", "Pierce", "Finding kind").Kind = f.kind
         obj.addProperty("App::PropertyString", "Solids", "Pierce", "Solids involved").Solids = (

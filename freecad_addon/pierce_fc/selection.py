@@ -12,15 +12,22 @@ class SolidRef:
     its position in the object's Shape.Solids; `face_ids` maps the solid's faces (in
     shape.Faces order) to 1-based face numbers of the object's shape ("Face<n>" sub-elements)."""
 
-    def __init__(self, obj, index, shape, face_ids, count):
+    def __init__(self, obj, index, shape, face_ids, count, tree_obj=None):
         self.obj = obj
         self.index = index
         self.shape = shape
         self.face_ids = face_ids
         self.count = count  # solids in the object
+        # The object the tree shows for this solid when `obj` is a compound of other objects
+        # (Part::Compound, an imported STEP assembly): its Label names the solid.
+        self.tree_obj = tree_obj
 
     @property
     def label(self):
+        """The solid as the tree names it: the object's Label; for a solid of a compound, the
+        Label of the tree object it comes from, else "Label (solid N)" counting from 1."""
+        if self.tree_obj is not None:
+            return self.tree_obj.Label
         if self.count > 1:
             return "%s (solid %d)" % (self.obj.Label, self.index + 1)
         return self.obj.Label
@@ -89,6 +96,33 @@ def _face_index_map(whole, solid):
     return ids
 
 
+def _tree_objects(obj, solids):
+    """For each of `solids` (the solids of compound `obj`, global), the object below `obj` in the
+    tree it comes from (a child holding exactly one solid, the same one: same shape, or the same
+    volume and centre of mass), or None."""
+    import Part
+    children = []
+    for child in getattr(obj, "OutList", []):
+        try:
+            cs = Part.getShape(child).Solids
+        except Exception:  # children without a Part shape
+            continue
+        if len(cs) == 1:
+            children.append((child, cs[0]))
+    out = []
+    for s in solids:
+        match = next((c for c, cs in children if cs.isSame(s)), None)
+        if match is None:
+            tol = 1e-9 * max(s.BoundBox.DiagonalLength, 1e-12)
+            close = [c for c, cs in children if abs(cs.Volume - s.Volume) <= 1e-9 * max(abs(s.Volume), 1e-12) and
+                     (cs.CenterOfMass - s.CenterOfMass).Length <= tol]
+            match = close[0] if len(close) == 1 else None
+        out.append(match)
+    if len({o.Name for o in out if o is not None}) < len([o for o in out if o is not None]):
+        return [None] * len(solids)  # one child matched twice: do not guess
+    return out
+
+
 def collect_solids(objects, accept_closed_shells=True):
     """Returns (solids, warnings). Raises SelectionError when no solid can be analysed."""
     import Part
@@ -102,8 +136,9 @@ def collect_solids(objects, accept_closed_shells=True):
             problems.append("'%s' has no shape" % obj.Label)
             continue
         if shape.Solids:
+            owners = _tree_objects(obj, shape.Solids) if len(shape.Solids) > 1 else [None]
             for i, s in enumerate(shape.Solids):
-                solids.append(SolidRef(obj, i, s, _face_index_map(shape, s), len(shape.Solids)))
+                solids.append(SolidRef(obj, i, s, _face_index_map(shape, s), len(shape.Solids), owners[i]))
             continue
         shells = shape.Shells
         open_shells = [sh for sh in shells if not sh.isClosed()]

@@ -22,7 +22,7 @@ GAP = (0.6, 0.6, 0.6)
 
 
 class ShotOptions:
-    def __init__(self, deflection=0.0, angular_deflection=15.0, csg=None, create_objects=True):
+    def __init__(self, deflection=None, angular_deflection=None, csg=None, create_objects=True):
         self.deflection = deflection
         self.angular_deflection = angular_deflection
         self.csg = csg  # e.g. "difference(Plate, Hole)" over solid labels; None: plain partitions

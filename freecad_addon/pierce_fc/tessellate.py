@@ -83,9 +83,9 @@ def auto_max_edge(shapes):
 
 
 def checked_max_edge(max_edge, refs):
-    """max_edge as the meshers take it: None becomes auto_max_edge; a negative or non-finite
+    """max_edge as the meshers take it: "auto" becomes auto_max_edge; a negative or non-finite
     length is a UserError."""
-    if max_edge is None:
+    if max_edge == "auto":
         return auto_max_edge([r.shape for r in refs])
     if max_edge < 0 or not math.isfinite(max_edge):
         raise UserError("The maximum edge length must be a positive length (or 0 for no limit).")
@@ -94,7 +94,7 @@ def checked_max_edge(max_edge, refs):
 
 def build_model(refs, deflection=0.0, angular_deflection_deg=15.0, max_edge=0.0, progress=None):
     """Meshes every SolidRef into one pierce.Scene. deflection 0: auto_deflection. max_edge > 0:
-    triangles are split until no edge is longer (None: auto_max_edge; 0: no splitting).
+    triangles are split until no edge is longer ("auto": auto_max_edge; 0: no splitting).
     progress(done, total) is called after each solid; returning False stops with pierce.Cancelled."""
     from .locate import import_pierce
     pierce = import_pierce()
@@ -123,59 +123,81 @@ def build_model(refs, deflection=0.0, angular_deflection_deg=15.0, max_edge=0.0,
 
 
 def brep_model(refs, deflection=0.0, angular_deflection_deg=15.0, max_edge=0.0, progress=None):
-    """Every SolidRef through Pierce's own CAD loader, each solid written as BREP: Pierce's
-    tessellation, checked against the B-rep (a solid that folds is meshed again, finer; folds left
-    are flagged), with the exact surfaces kept, so that thickness samples start on the exact faces
-    and their exits are refined on them (docs/THICKNESS.md). max_edge > 0: Pierce splits longer
-    triangle edges (None: auto_max_edge; 0: no splitting), the triangles staying linked to their
-    faces. face_of_triangle is None (Pierce keeps that link itself)."""
+    """Every SolidRef through Pierce's own CAD loader, all solids written as one BREP compound, as
+    the CLI reads a CAD file of them: Pierce's tessellation (deflection 0: 0.1% of the diagonal of
+    all of them, computed by Pierce as for the CLI), checked against the B-rep (a solid that folds
+    is meshed again, finer; folds left are flagged), with the exact surfaces kept, so that
+    thickness samples start on the exact faces and their exits are refined on them
+    (docs/THICKNESS.md). max_edge > 0: Pierce splits longer triangle edges ("auto": auto_max_edge; 0:
+    no splitting), the triangles staying linked to their faces. face_of_triangle is None (Pierce
+    keeps that link itself)."""
     import tempfile
+    import Part
     from .locate import import_pierce
     pierce = import_pierce()
     if not getattr(pierce, "HAS_CAD", False):
         raise UserError("This Pierce build has no OpenCASCADE: sampling on the exact B-rep needs it.")
-    deflection = checked_deflection(deflection, refs)
+    if deflection < 0 or not math.isfinite(deflection):
+        raise UserError("The deflection must be a positive length (or 0 for automatic).")
     max_edge = checked_max_edge(max_edge, refs)
     scene = pierce.Scene()
     solids, warnings = [], []
+    stem = "selection"
     with tempfile.TemporaryDirectory(prefix="pierce_brep_") as d:
-        paths = []
-        for k, ref in enumerate(refs):
-            path = os.path.join(d, "solid%d.brep" % k)
-            ref.shape.exportBrep(path)
-            paths.append(path)
-            if progress is not None and progress(k + 1, len(refs)) is False:
-                raise pierce.Cancelled("stopped while writing the solids")
-        info = pierce.add_model_files(scene, paths, linear_deflection=deflection,
+        path = os.path.join(d, stem + ".brep")
+        # Copies: adding a shape to a compound marks its TShape as not free, which would change
+        # the user's solid.
+        Part.makeCompound([ref.shape.copy(False) for ref in refs]).exportBrep(path)
+        if progress is not None and progress(len(refs), len(refs)) is False:
+            raise pierce.Cancelled("stopped while writing the solids")
+        info = pierce.add_model_files(scene, [path], linear_deflection=deflection,
                                       angular_deflection=angular_deflection_deg, max_edge=max_edge)
-    for ref, f in zip(refs, info):
-        first, count = f["geometries"]
-        for w in f["warnings"]:
-            warnings.append("'%s': %s" % (ref.label, w))
-        if count != 1:
-            warnings.append("'%s' gave %d solids when read back; it is skipped" % (ref.label, count))
-            continue
-        g = scene.geometry(first)
+    f = info[0]
+    first, count = f["geometries"]
+    # Pierce names the solids of the file stem, stem#2, stem#3...: messages name them by label.
+    names = [(stem if k == 0 else "%s#%d" % (stem, k + 1), ref.label) for k, ref in enumerate(refs)]
+    for w in f["warnings"]:
+        for name, label in sorted(names, key=lambda n: -len(n[0])):
+            w = w.replace(name + ":", "'%s':" % label)
+        warnings.append(w)
+    if count != len(refs):
+        raise UserError("Pierce read %d solids back from the %d selected; select fewer solids or turn off "
+                        "'On the exact B-rep'." % (count, len(refs)))
+    for k, ref in enumerate(refs):
+        g = scene.geometry(first + k)
         solids.append(MeshedSolid(ref, np.array(g.vertices, dtype=np.float64), np.array(g.triangles, dtype=np.int64),
-                                  None, first))
-        for chk in f["tessellation"]:
-            if chk["folded"]:
-                warnings.append("'%s': %d folded triangles left after remeshing; samples on them are excluded "
-                                "(status tessellation)" % (ref.label, chk["folded"]))
-    if not solids:
-        raise UserError("None of the selected solids could be meshed.")
-    return Model(scene, solids, deflection, warnings, max_edge, on_brep=True)
+                                  None, first + k))
+        chk = f["tessellation"][k] if k < len(f["tessellation"]) else None
+        if chk and chk["folded"]:
+            warnings.append("'%s': %d folded triangles left after remeshing; samples on them are excluded "
+                            "(status tessellation)" % (ref.label, chk["folded"]))
+    return Model(scene, solids, f["linear_deflection"], warnings, max_edge, on_brep=True)
+
+
+def tessellation_defaults():
+    """The tessellation defaults of every Pierce front end (pierce.tessellation_defaults(): the
+    CLI's --deflection, --angular-deflection and --max-edge)."""
+    from .locate import import_pierce
+    return dict(import_pierce().tessellation_defaults())
 
 
 def mesh_objects(objects, deflection, angular_deflection_deg, max_edge=0.0, progress=None, cancel=None,
                  on_brep=False):
     """The first step of every analysis: the solids of `objects` (selection.collect_solids),
-    meshed into one Model (build_model; brep_model when on_brep). Returns (model, the selection's
+    meshed into one Model (build_model; brep_model when on_brep). deflection, angular_deflection_deg,
+    max_edge: None takes tessellation_defaults(); max_edge "auto": auto_max_edge. Returns (model, the selection's
     warnings); raises pierce.Cancelled when cancel was set before the meshing started."""
     from .locate import import_pierce
     from .progress import start_stage
     from .selection import collect_solids
     pierce = import_pierce()
+    defaults = tessellation_defaults()
+    if deflection is None:
+        deflection = defaults["linear_deflection"]
+    if angular_deflection_deg is None:
+        angular_deflection_deg = defaults["angular_deflection"]
+    if max_edge is None:
+        max_edge = defaults["max_edge"]
     refs, warnings = collect_solids(objects)
     if cancel is not None and cancel.cancelled:
         raise pierce.Cancelled("cancelled before start")

@@ -23,6 +23,11 @@ def method_names():
     return tuple(_pierce().thickness_methods())
 
 
+def thickness_defaults():
+    """Pierce's default method and sampling (pierce.thickness_defaults(): the CLI's)."""
+    return dict(_pierce().thickness_defaults())
+
+
 def has_cad():
     """Whether this Pierce build reads CAD (OpenCASCADE): needed to sample on the exact B-rep."""
     return bool(getattr(_pierce(), "HAS_CAD", False))
@@ -34,11 +39,15 @@ def sampling_names():
 
 
 class ThicknessOptions:
-    def __init__(self, method="ray", per="face", deflection=0.0, angular_deflection=15.0, max_edge=None,
+    def __init__(self, method=None, per=None, deflection=None, angular_deflection=None, max_edge=None,
                  threshold=0.0, max_distance=math.inf, color_min=None, color_max=None, create_objects=True,
-                 on_brep=None):
-        self.method = method          # ray | cone | sphere
-        self.per = per                # face (triangle centroids) | vertex
+                 on_brep=None, keep_previous=False):
+        # None: Pierce's defaults (pierce.thickness_defaults(), the CLI's --method and --per).
+        defaults = _pierce().thickness_defaults() if method is None or per is None else {}
+        self.method = method or defaults["method"]  # ray | cone | sphere
+        self.per = per or defaults["per"]           # vertex | face (triangle centroids)
+        # Tessellation: None takes the defaults every Pierce front end shares
+        # (tessellate.tessellation_defaults(), the CLI's), so the same part gives the same samples.
         self.deflection = deflection  # mm; 0 = 0.1% of the selection's diagonal
         self.angular_deflection = angular_deflection  # degrees
         # On the exact B-rep (Pierce's CAD tessellation, checked against the B-rep, samples and exits
@@ -46,12 +55,15 @@ class ThicknessOptions:
         # None: on the B-rep when this Pierce build reads CAD (pierce.HAS_CAD).
         self.on_brep = on_brep
         self.max_edge = max_edge      # mm: split longer triangle edges (samples on big flat faces);
-                                      # None = 4% of the selection's diagonal, 0 = no splitting
+                                      # "auto" = 4% of the selection's diagonal, 0 = no splitting
         self.threshold = threshold    # thin below this (mm); 0 = no highlight
         self.max_distance = max_distance
-        self.color_min = color_min    # legend range; None = the results' min / max
+        self.color_min = color_min    # legend range; None = default_color_range()
         self.color_max = color_max
         self.create_objects = create_objects
+        # Re-running on the same solids replaces that analysis' previous result objects unless
+        # keep_previous is set.
+        self.keep_previous = keep_previous
 
     def check(self):
         if self.method not in method_names():
@@ -71,12 +83,16 @@ class SolidThickness:
     """Thickness of one solid: values per mesh vertex or triangle (NaN: none), statistics, and the
     result object (None when objects were not created)."""
 
-    def __init__(self, meshed, values, status, stats, thin_count):
+    def __init__(self, meshed, values, status, stats, thin_count, region=None, points=None, normals=None):
         self.meshed = meshed
         self.values = values
         self.status = status
         self.stats = stats  # pierce.SolidThickness
         self.thin_count = thin_count
+        # Per sample: region id (-1: none; see ThicknessRun.thin_regions) and sample point.
+        self.region = region if region is not None else np.full(len(values), -1, dtype=np.int32)
+        self.points = points
+        self.normals = normals  # unit outward normals per sample (zero where none)
         self.result_object = None
 
     @property
@@ -88,6 +104,11 @@ class SolidThickness:
         return self.values[np.isfinite(self.values)]
 
     def percentile(self, q):
+        """Percentile q of the thickness: Pierce's own (as the CLI reports it) for the percentiles
+        it summarises, else of the valid values (the same linear interpolation)."""
+        for pq, value in self.stats.summary.percentiles:
+            if pq == q:
+                return float(value) if self.stats.summary.count else math.nan
         v = self.valid
         return float(np.percentile(v, q)) if len(v) else math.nan
 
@@ -103,6 +124,62 @@ class ThicknessRun:
     # Thin walls as findings (pierce.ThicknessRegion, thinnest first): samples strictly below the
     # threshold connected on a solid's surface and across the wall; area on both sides.
     thin_regions: list = None
+    # Whether valid values lie below / above the legend range (shown clamped to its ends).
+    clamped: tuple = (False, False)
+
+    def region_solid(self, region):
+        """The SolidThickness a region lies on."""
+        for s in self.solids:
+            if s.meshed.geom == region.solid:
+                return s
+        return None
+
+    def region_box(self, k):
+        """(lo, hi) corners of the box around thin region k: its samples' triangles (per face) or
+        vertices (per vertex), its thinnest point and that ray's exit."""
+        g = self.thin_regions[k]
+        s = self.region_solid(g)
+        pts = [np.asarray(g.point, dtype=float), np.asarray(g.exit, dtype=float)]
+        if s is not None:
+            idx = np.nonzero(s.region == k)[0]
+            m = s.meshed
+            if self.options.per == "face":
+                pts.extend(m.vertices[m.triangles[idx].reshape(-1)])
+            else:
+                pts.extend(m.vertices[idx])
+        pts = np.asarray(pts, dtype=float)
+        pts = pts[np.all(np.isfinite(pts), axis=1)]
+        return pts.min(axis=0), pts.max(axis=0)
+
+    def region_view(self, k):
+        """(centre, radius, direction) to look at thin region k: the centre and half the diagonal
+        of region_box(k), and the outward normal at its thinnest sample (look against it to see
+        that side of the wall; None when unknown)."""
+        lo, hi = self.region_box(k)
+        g = self.thin_regions[k]
+        s = self.region_solid(g)
+        normal = None
+        if s is not None and s.normals is not None:
+            idx = np.nonzero(s.region == k)[0]
+            if len(idx):
+                vals = np.where(np.isfinite(s.values[idx]), s.values[idx], np.inf)
+                n = s.normals[idx[int(np.argmin(vals))]]
+                if np.linalg.norm(n) > 0.5:
+                    normal = tuple(float(c) for c in n / np.linalg.norm(n))
+        return tuple(float(c) for c in (lo + hi) / 2), float(np.linalg.norm(hi - lo) / 2), normal
+
+    def region_faces(self, k):
+        """(object, ["Face3", ...]) of the analysed object's B-rep faces thin region k covers
+        (empty on FreeCAD's mesh, whose triangles keep their faces in face_of_triangle)."""
+        g = self.thin_regions[k]
+        s = self.region_solid(g)
+        if s is None:
+            return None, []
+        ref = s.meshed.ref
+        faces = list(g.faces)
+        if not faces and s.meshed.face_of_triangle is not None and self.options.per == "face":
+            faces = sorted(set(int(f) for f in s.meshed.face_of_triangle[s.region == k]))
+        return ref.obj, ref.face_names(faces)
 
     def region_label(self, region):
         """The label of the solid a region lies on."""
@@ -110,6 +187,20 @@ class ThicknessRun:
             if s.meshed.geom == region.solid:
                 return s.label
         return "#%d" % region.solid
+
+    def legend_text(self):
+        """One line on the colour range and how it was chosen."""
+        lo, hi = self.color_range
+        o = self.options
+        if o.color_min is not None or o.color_max is not None:
+            how = "as set"
+        elif o.threshold > 0:
+            how = "default: 0 to %g x the thin threshold" % _pierce().COLOR_RANGE_THIN_FACTOR
+        else:
+            how = "default: P%g to P%g of the samples" % tuple(_pierce().COLOR_RANGE_PERCENTILES)
+        clamped = [what for what, c in zip(("thinner walls drawn as its low end", "thicker walls drawn as its high "
+                                            "end"), self.clamped) if c]
+        return "Legend %.4g to %.4g mm (%s)%s" % (lo, hi, how, "; " + ", ".join(clamped) if clamped else "")
 
     def summary(self):
         o = self.options
@@ -138,7 +229,8 @@ class ThicknessRun:
                 len(self.thin_regions), o.threshold, ", the ten thinnest:" if len(self.thin_regions) > 10 else ""))
             for k, g in enumerate(self.thin_regions[:10]):
                 lines.append("  region %d: '%s' min %.4g, area %.4g, %d samples, at (%.4g, %.4g, %.4g)" % (
-                    k, self.region_label(g), g.thickness, g.area, g.samples, *g.point))
+                    k + 1, self.region_label(g), g.thickness, g.area, g.samples, *g.point))
+        lines.append(self.legend_text())
         for w in self.warnings:
             lines.append("Pierce: warning: " + w)
         return "\n".join(lines)
@@ -162,13 +254,29 @@ def compute(objects, options, progress=None, cancel=None):
         values = np.array(res.thickness[sel])
         status = np.array(res.status[sel])
         order = np.argsort(np.array(res.element[sel]), kind="stable")
-        solids.append(SolidThickness(m, values[order], status[order], st, int(np.count_nonzero(res.thin[sel]))))
+        region = np.array(res.region[sel])[order] if len(res.region) else None
+        solids.append(SolidThickness(m, values[order], status[order], st, int(np.count_nonzero(res.thin[sel])),
+                                     region=region, points=np.array(res.point[sel])[order],
+                                     normals=np.array(res.normal[sel])[order]))
     valid = np.concatenate([s.valid for s in solids]) if solids else np.zeros(0)
-    lo = options.color_min if options.color_min is not None else (float(valid.min()) if len(valid) else 0.0)
-    hi = options.color_max if options.color_max is not None else (float(valid.max()) if len(valid) else 1.0)
+    lo, hi = default_color_range(valid, options.threshold)
+    if options.color_min is not None:
+        lo = options.color_min
+    if options.color_max is not None:
+        hi = options.color_max
     if not hi > lo:
         hi = lo + max(abs(lo) * 1e-3, 1e-9)  # a uniform wall: any non-empty range shows one colour
-    return ThicknessRun(options, model, solids, (lo, hi), warnings + model.warnings, thin_regions=list(res.thin_regions))
+    clamped = (bool(len(valid)) and bool(valid.min() < lo), bool(len(valid)) and bool(valid.max() > hi))
+    return ThicknessRun(options, model, solids, (lo, hi), warnings + model.warnings,
+                        thin_regions=list(res.thin_regions), clamped=clamped)
+
+
+def default_color_range(valid, threshold=0.0):
+    """The legend's default (lo, hi) for the valid thickness values, as every Pierce front end
+    chooses it (pierce.default_color_range): with a thin threshold T > 0, 0 to
+    pierce.COLOR_RANGE_THIN_FACTOR x T; otherwise the pierce.COLOR_RANGE_PERCENTILES of the values.
+    Values outside are drawn in the colour of the nearer end (clamped)."""
+    return tuple(_pierce().default_color_range([float(v) for v in valid], float(threshold)))
 
 
 def create_objects(doc, run):
@@ -177,8 +285,17 @@ def create_objects(doc, run):
     import Mesh
     o = run.options
     lo, hi = run.color_range
+    sources = sources_key(run.solids)
+    if not o.keep_previous:
+        remove_previous(doc, "thickness", sources)
     group = doc.addObject("App::DocumentObjectGroup", "PierceThickness")
-    group.Label = "Thickness map"
+    labels = sorted({s.meshed.ref.obj.Label for s in run.solids})
+    group.Label = "Thickness map %s" % labels[0] if len(labels) == 1 else "Thickness map (%d objects)" % len(labels)
+    _add(group, "App::PropertyString", "PierceAnalysis", "Pierce", "Analysis that made this result", "thickness")
+    _add(group, "App::PropertyString", "PierceSources", "Pierce", "Analysed solids (object names and solid indices)",
+         sources)
+    group.setEditorMode("PierceAnalysis", 1)
+    group.setEditorMode("PierceSources", 1)
     for s in run.solids:
         m = s.meshed
         mesh = Mesh.Mesh()
@@ -223,6 +340,25 @@ def create_objects(doc, run):
     for s in run.solids:  # after the recompute, which rebuilds the mesh display without colours
         show_colours(s.result_object)
     return group
+
+
+def sources_key(solids):
+    """The analysed solids of a result (SolidThickness or tessellate.MeshedSolid) as one string:
+    "Name:index" of each solid, sorted."""
+    refs = [getattr(s, "meshed", s).ref for s in solids]
+    return " ".join(sorted("%s:%d" % (r.obj.Name, r.index) for r in refs))
+
+
+def remove_previous(doc, analysis, sources):
+    """Removes the result groups (and their contents) of `analysis` on the same `sources`
+    (sources_key) from `doc`; returns how many groups were removed."""
+    old = [g for g in doc.Objects if getattr(g, "PierceAnalysis", None) == analysis and
+           getattr(g, "PierceSources", None) == sources]
+    for g in old:
+        for child in list(getattr(g, "Group", [])):
+            doc.removeObject(child.Name)
+        doc.removeObject(g.Name)
+    return len(old)
 
 
 def show_colours(obj):
@@ -298,6 +434,42 @@ def caliper(obj, subname, point, method="ray", max_distance=math.inf):
     status = pierce.THICKNESS_STATUS[int(r.status[0])]
     return CaliperReading(obj.Label, subname, float(r.thickness[0]), status, tuple(float(v) for v in r.point[0]),
                           tuple(float(v) for v in r.normal[0]))
+
+
+def caliper_on_map(result, point, method="ray", max_distance=math.inf):
+    """The caliper at `point` (global coordinates) picked on a thickness map `result` (its
+    Mesh::Feature): measured on the analysed solid (the map's SourceObject and SolidIndex) at its
+    face nearest to the point. Raises UserError saying why when the source is gone, is not a solid
+    any more, or no longer lies under the map (moved or edited since the map was made)."""
+    import Part
+    doc = result.Document
+    source = doc.getObject(result.SourceObject) if result.SourceObject else None
+    if source is None or not hasattr(source, "Shape"):
+        raise UserError("Caliper: the source '%s' of '%s' is no longer in the document; pick on a solid." % (
+            result.SourceObject, result.Label))
+    solids = source.Shape.Solids
+    if not 0 <= result.SolidIndex < len(solids):
+        raise UserError("Caliper: '%s' no longer has the solid '%s' was made from; compute the map again." % (
+            source.Label, result.Label))
+    solid = solids[result.SolidIndex]
+    vertex = Part.Vertex(_vector(point))
+    best = None
+    for face in solid.Faces:
+        d = face.distToShape(vertex)[0]
+        if best is None or d < best[0]:
+            best = (d, face)
+    # The map's triangles lie within the tessellation's deflection of the faces.
+    tolerance = max(10.0 * getattr(result, "Deflection", 0.0), 1e-6 * solid.BoundBox.DiagonalLength)
+    if best is None or best[0] > tolerance:
+        raise UserError("Caliper: the point is %.4g mm from '%s': the solid was moved or edited since '%s' was made; "
+                        "compute the map again." % (best[0] if best else math.nan, source.Label, result.Label))
+    index = next((i for i, f in enumerate(source.Shape.Faces) if f.isSame(best[1])), None)
+    return caliper(source, "Face%d" % (index + 1), point, method=method, max_distance=max_distance)
+
+
+def _vector(p):
+    import FreeCAD
+    return FreeCAD.Vector(float(p[0]), float(p[1]), float(p[2]))
 
 
 # The scene of the solid the caliper read last, by the digest of its BREP text: clicks on one

@@ -15,7 +15,8 @@ from . import _core
 from ._core import *  # noqa: F401,F403  (Scene, Geometry, gen, kernels, analyses, errors, ...)
 from ._core import CancelToken, Cancelled, InputError, Scene, gen, is_exact, kernels  # noqa: F401
 
-__all__ = ["Scene", "Geometry", "gen", "load", "load_mesh", "load_rays", "mesh_report",
+__all__ = ["Scene", "Geometry", "gen", "load", "tessellation_defaults", "thickness_defaults",
+           "default_color_range", "COLOR_RANGE_THIN_FACTOR", "COLOR_RANGE_PERCENTILES", "load_mesh", "load_rays", "mesh_report",
            "Hits", "trace", "kernels", "is_exact",
            "thickness", "thickness_at", "thickness_along", "THICKNESS_STATUS",
            "coplanar_overlaps", "ray_overlaps", "axis_grid_rays", "triangle_overlap_arrays", "clearance",
@@ -66,18 +67,20 @@ def trace(scene, origins, directions, *, tmin=0.0, tmax=float("inf"), kernel=_co
     return Hits(records, offsets)
 
 
-def load(*paths, linear_deflection=0.0, angular_deflection=15.0, fold_remesh_rounds=3, max_edge=0.0):
+def load(*paths, **tessellation):
     """A new Scene with every solid of the given files, one geometry per solid or part: STL, OBJ, OFF,
     PLY, and STEP/IGES/BREP when pierce.HAS_CAD (tessellated with linear_deflection in model units,
     0 = 0.1% of the diagonal, and angular_deflection in degrees; a solid whose mesh folds against the
     B-rep meshed again up to fold_remesh_rounds times; with max_edge > 0, longer triangle edges split,
     for more samples on big flat faces). Per-file info (units, warnings, per solid the
     tessellation checked against the B-rep) is in scene.load_info. Thickness maps of CAD solids are
-    sampled on the exact B-rep (docs/THICKNESS.md)."""
+    sampled on the exact B-rep (docs/THICKNESS.md). Options not given take
+    pierce.tessellation_defaults(), the CLI's defaults."""
+    unknown = set(tessellation) - set(_core.tessellation_defaults())
+    if unknown:
+        raise TypeError("load() got unexpected keyword argument(s): %s" % ", ".join(sorted(unknown)))
     scene = Scene()
-    info = _core.add_model_files(scene, [str(p) for p in paths], linear_deflection=linear_deflection,
-                                 angular_deflection=angular_deflection, fold_remesh_rounds=fold_remesh_rounds,
-                                 max_edge=max_edge)
+    info = _core.add_model_files(scene, [str(p) for p in paths], **tessellation)
     scene.load_info = info
     return scene
 

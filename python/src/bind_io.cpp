@@ -3,6 +3,7 @@
 
 #include "common.h"
 #include "pierce/generators.h"
+#include "pierce/io/cad_io.h"  // TessellationOptions: the defaults every front end shares
 #include "pierce/io/mesh_io.h"
 #ifdef PIERCE_PY_WITH_CAD
 #include "pierce/io/cad_surfaces.h"
@@ -13,6 +14,21 @@
 namespace pierce::py {
 
 void bind_io(pyb::module_& m) {
+  const TessellationOptions tess;  // defaults of the CLI, Python, ParaView and FreeCAD
+  m.def(
+      "tessellation_defaults",
+      [] {
+        const TessellationOptions t;
+        pyb::dict d;
+        d["linear_deflection"] = t.linear_deflection;
+        d["angular_deflection"] = t.angular_deflection_deg;
+        d["fold_remesh_rounds"] = t.fold_remesh_rounds;
+        d["max_edge"] = t.max_edge_length;
+        return d;
+      },
+      "The CAD tessellation defaults every front end uses (the CLI's --deflection, --angular-deflection,\n"
+      "--fold-remesh-rounds and --max-edge): linear_deflection (0 = 0.1% of the model's diagonal),\n"
+      "angular_deflection (degrees), fold_remesh_rounds and max_edge (0 = long edges are not split).");
   m.def(
       "load_mesh",
       [](const std::string& path) {
@@ -94,8 +110,9 @@ void bind_io(pyb::module_& m) {
         s.invalidate_accel();
         return info;
       },
-      pyb::arg("scene"), pyb::arg("paths"), pyb::kw_only(), pyb::arg("linear_deflection") = 0.0,
-      pyb::arg("angular_deflection") = 15.0, pyb::arg("fold_remesh_rounds") = 3, pyb::arg("max_edge") = 0.0,
+      pyb::arg("scene"), pyb::arg("paths"), pyb::kw_only(), pyb::arg("linear_deflection") = tess.linear_deflection,
+      pyb::arg("angular_deflection") = tess.angular_deflection_deg, pyb::arg("fold_remesh_rounds") = tess.fold_remesh_rounds,
+      pyb::arg("max_edge") = tess.max_edge_length,
       "Adds every solid of the files (STL/OBJ/OFF/PLY, and STEP/IGES/BREP when built with OpenCASCADE;\n"
       "geometry source = path). CAD files are tessellated with linear_deflection (model units, 0 = 0.1% of\n"
       "the diagonal) and angular_deflection (degrees); a solid whose mesh folds against the B-rep is meshed\n"

@@ -186,6 +186,27 @@ void bind_thickness(pyb::module_& m) {
   m.attr("THICKNESS_STATUS") = pyb::tuple(pyb::cast(enum_names<ThicknessStatus>()));
   m.def("thickness_methods", [] { return enum_names<ThicknessMethod>(); },
         "Names of the thickness methods (thickness(method=...)).");
+  m.def(
+      "default_color_range",
+      [](const std::vector<double>& values, double min_thickness) {
+        return default_color_range(values, min_thickness);
+      },
+      pyb::arg("values"), pyb::arg("min_thickness") = 0.0,
+      "(lo, hi): the colour range every front end gives a thickness map by default: with a thin threshold\n"
+      "min_thickness > 0, 0 to COLOR_RANGE_THIN_FACTOR x min_thickness; otherwise the COLOR_RANGE_PERCENTILES\n"
+      "of the finite values. Values outside take the colour of the nearer end.");
+  m.attr("COLOR_RANGE_THIN_FACTOR") = kColorRangeThinFactor;
+  m.attr("COLOR_RANGE_PERCENTILES") = pyb::make_tuple(kColorRangePercentiles[0], kColorRangePercentiles[1]);
+  m.def(
+      "thickness_defaults",
+      [] {
+        const ThicknessOptions o;
+        pyb::dict d;
+        d["method"] = std::string(enum_name(o.method));
+        d["per"] = std::string(enum_name(o.per));
+        return d;
+      },
+      "The thickness defaults every front end uses (the CLI's --method and --per): method, per.");
   m.def("thickness_samplings", [] { return enum_names<SampleAt>(); },
         "Names of the sample locations (thickness(per=...)).");
   m.def("cone_aggregates", [] { return enum_names<ConeAggregate>(); },
@@ -204,7 +225,8 @@ void bind_thickness(pyb::module_& m) {
         return run_analysis(s, progress, cancel, 0,
                             [&](const Progress& p) { return compute_thickness(s.accel(), o, p); });
       },
-      pyb::arg("scene"), pyb::kw_only(), pyb::arg("method") = "ray", pyb::arg("per") = "vertex",
+      pyb::arg("scene"), pyb::kw_only(), pyb::arg("method") = std::string(enum_name(ThicknessOptions{}.method)),
+      pyb::arg("per") = std::string(enum_name(ThicknessOptions{}.per)),
       pyb::arg("max_distance") = std::numeric_limits<double>::infinity(), pyb::arg("min_thickness") = 0.0,
       pyb::arg("max_thickness") = std::numeric_limits<double>::infinity(), pyb::arg("cone_rays") = 30, pyb::arg("cone_angle") = 120.0, pyb::arg("cone_aggregate") = "shapira",
       pyb::arg("sphere_max_iterations") = 100, pyb::arg("tie_tolerance_rel") = 1e-6, pyb::arg("kernel") = default_kernel_name(),

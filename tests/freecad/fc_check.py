@@ -72,3 +72,59 @@ def run_in_gui(name, body):
         os._exit(code)
 
     QtCore.QTimer.singleShot(0, main)
+
+
+def window_screenshot(path):
+    """Saves the FreeCAD window as the user sees it to `path`: under xvfb a grab of the window
+    leaves the OpenGL 3D view blank, so the view is rendered (saveImage) and drawn into its place.
+    Returns whether the file was written."""
+    import tempfile
+    import FreeCADGui as Gui
+    from PySide2 import QtCore, QtGui, QtWidgets
+    mw = Gui.getMainWindow()
+    for _ in range(3):
+        QtWidgets.QApplication.processEvents()
+    shot = mw.grab()
+    mdi = mw.findChild(QtWidgets.QMdiArea)
+    sub = mdi.activeSubWindow() if mdi is not None else None
+    view = getattr(Gui.ActiveDocument, "ActiveView", None) if Gui.ActiveDocument else None
+    if sub is not None and view is not None and hasattr(view, "saveImage"):
+        target = sub.widget().centralWidget() if hasattr(sub.widget(), "centralWidget") else sub.widget()
+        target = target or sub.widget()
+        rect = QtCore.QRect(target.mapTo(mw, QtCore.QPoint(0, 0)), target.size())
+        with tempfile.TemporaryDirectory() as d:
+            img = os.path.join(d, "view.png")
+            view.saveImage(img, rect.width(), rect.height(), "Current")
+            painter = QtGui.QPainter(shot)
+            painter.drawImage(rect, QtGui.QImage(img))
+            painter.end()
+    return shot.save(path)
+
+
+def clipped_widgets(form):
+    """Visible widgets of a task panel that reach past the visible width of the task view, or are
+    narrower than their minimum size hint (their text or buttons cut off): [(name, why)]."""
+    from PySide2 import QtWidgets
+    area = form.parent()
+    while area is not None and not isinstance(area, QtWidgets.QScrollArea):
+        area = area.parent()
+    viewport = area.viewport() if area is not None else form
+    width = viewport.width()
+    out = []
+    if area is not None and area.horizontalScrollBar().maximum() > 0:
+        out.append(("task view", "scrolls sideways by %d px" % area.horizontalScrollBar().maximum()))
+    for w in [form] + form.findChildren(QtWidgets.QWidget):
+        if not w.isVisibleTo(form) or isinstance(w, (QtWidgets.QScrollBar,)) or w.width() == 0:
+            continue
+        if w.parent() is not None and isinstance(w.parent(), (QtWidgets.QAbstractScrollArea,)) and w is not form:
+            continue  # viewports and scroll bars of lists and text boxes scroll their own content
+        left = w.mapTo(viewport, w.rect().topLeft()).x()
+        right = left + w.width()
+        name = "%s %r" % (type(w).__name__, (w.text() if hasattr(w, "text") and callable(w.text) else
+                                            w.title() if hasattr(w, "title") else w.objectName()))
+        if left < 0 or right > width + 1:
+            out.append((name, "spans x %d..%d of a %d px view" % (left, right, width)))
+        hint = w.minimumSizeHint()
+        if hint.isValid() and w.width() + 1 < hint.width() and not (isinstance(w, QtWidgets.QLabel) and w.wordWrap()):
+            out.append((name, "%d px wide, needs %d" % (w.width(), hint.width())))
+    return out, width

@@ -34,16 +34,9 @@ def image_stats(path):
 
 
 def part(doc):
-    """A plate with a boss and a through hole: walls from 2 to 12 mm."""
-    import FreeCAD
-    import Part
-    plate = Part.makeBox(60, 40, 6)
-    boss = Part.makeCylinder(9, 18, FreeCAD.Vector(42, 20, 0))
-    hole = Part.makeCylinder(5, 18, FreeCAD.Vector(42, 20, 0))
-    rib = Part.makeBox(30, 2, 12, FreeCAD.Vector(4, 19, 0))
-    shape = plate.fuse([boss, rib]).cut(hole).removeSplitter()
-    obj = doc.addObject("Part::Feature", "Bracket")
-    obj.Shape = shape
+    """A plate with a boss and a through hole: walls from 2 to 12 mm (solids.bracket)."""
+    import solids
+    obj = solids.bracket(doc)
     doc.recompute()
     return obj
 
@@ -166,10 +159,11 @@ def body(c):
     Gui.Selection.addSelection(a)
     Gui.Selection.addSelection(b)
     panel.on_run()
-    rows = [panel.table.item(r, 0).text() for r in range(panel.table.rowCount())]
-    c.check(rows == ["Interpenetration"], "overlap table: %s (%s)" % (rows, panel.message.text()))
+    rows = [panel.table.item(r, 1).text() for r in range(panel.table.rowCount())]
+    c.check(rows == ["clash"], "overlap table: %s (%s)" % (rows, panel.message.text()))
     if rows:
         c.check(panel.table.item(0, 3).text() == "2.5", "depth column: %r" % panel.table.item(0, 3).text())
+        c.check(panel.table.item(0, 2).text() == "BoxA / BoxB", "solids column: %r" % panel.table.item(0, 2).text())
         Gui.Selection.clearSelection()
         panel.table.selectRow(0)
         QtWidgets.QApplication.processEvents()

@@ -81,6 +81,51 @@ def body(c):
     inter = run.of_kind("interference")
     c.check(len(inter) == 1 and abs(inter[0].depth - 5.0) < 1e-3, "twins: overlap depth 5")
 
+    # Pairs by kind (pierce.clearance, as `pierce overlaps --clearance 1`): A/B clash 2.5 deep,
+    # Left/Right touch, a 0.3 gap is a clearance of exactly 0.3; Far is not reported.
+    g1 = solids.box(doc, "GapLeft", (10, 10, 10), at=(0, 60, 0))
+    g2 = solids.box(doc, "GapRight", (10, 10, 10), at=(10.3, 60, 0))
+    run = overlap_check.run([a, b, far, t1, t2, g1, g2], OverlapOptions(grid=32, clearance=1.0), doc=doc)
+    got = sorted((p.kind, p.a.label, p.b.label) for p in run.pairs)
+    c.check(got == [("clash", "A", "B"), ("clearance", "GapLeft", "GapRight"), ("contact", "Left", "Right")],
+            "pairs by kind: %s" % got)
+    c.check([p.number for p in run.pairs] == list(range(1, len(run.pairs) + 1)), "pairs are numbered from 1")
+    for p in run.pairs:
+        if p.kind == "clash":
+            c.near(p.depth, 2.5, 0.025, "clash depth")
+            c.check(p.finding is not None and p.finding.kind == "interference", "the clash row selects its faces")
+        elif p.kind == "contact":
+            c.check(p.gap == 0.0, "contact gap 0: %r" % p.gap)
+        else:
+            c.near(p.gap, 0.3, 1e-9, "clearance gap")
+            c.check(p.point_b is not None and abs(p.point_b[0] - p.point[0]) > 0.29, "clearance has both points")
+    text = run.summary()
+    c.check("1 clash, 1 contact, 1 clearance" in text and "(%.4g, " % run.pairs[0].point[0] in text,
+            "the summary has the counts and each pair's point: %s" % text.splitlines()[:2])
+    markers = [o for o in doc.Objects if getattr(o, "PierceAnalysis", None) == "overlaps"]
+    run = overlap_check.run([a, b, far, t1, t2, g1, g2], OverlapOptions(grid=32, clearance=1.0), doc=doc)
+    again = [o for o in doc.Objects if getattr(o, "PierceAnalysis", None) == "overlaps" and
+             o.PierceSources == run.group.PierceSources]
+    c.check(len(again) == 1 and len(markers) >= 1, "re-running replaces the markers' folder: %d" % len(again))
+    labels = sorted(o.Label for o in run.group.Group)
+    want = sorted("Pair %d %s" % (p.number, p.kind) for p in run.pairs if p.kind != "clearance")
+    # (FreeCAD appends a number to a label another result in the document already has.)
+    c.check(len(labels) == len(want) == 2 and all(x.startswith(w) for x, w in zip(labels, want)),
+            "marker labels are short and name the rows: %s" % labels)
+
+    # Solids of a compound are named as the tree names them, numbered from 1.
+    k1 = solids.box(doc, "Solid", (4, 4, 4), at=(0, 200, 0))
+    k2 = solids.box(doc, "Solid001", (4, 4, 4), at=(3, 200, 0))
+    doc.recompute()
+    assy = doc.addObject("Part::Compound", "Assembly")
+    assy.Links = [k1, k2]
+    doc.recompute()
+    run = overlap_check.run([assy], OverlapOptions(grid=16, create_objects=False), doc=doc)
+    c.check([(p.a.label, p.b.label) for p in run.pairs] == [("Solid", "Solid001")],
+            "compound's solids named by their tree Labels: %s" % [(p.a.label, p.b.label) for p in run.pairs])
+    c.check("'Assembly' (2 solids)" in run.summary().splitlines()[0], "header names the compound once: %s"
+            % run.summary().splitlines()[0])
+
     c.check(a.Shape.isValid() and abs(a.Shape.Volume - 1000) < 1e-9, "inputs unchanged")
 
 

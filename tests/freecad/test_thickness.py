@@ -51,7 +51,7 @@ def body(c):
 
     # Thin highlight: the narrow box's triangles facing x (4 mm across) are thin below 5 mm, the
     # others (10 mm across) are not.
-    run = thickness_map.run([b], ThicknessOptions(per="face", threshold=5.0, on_brep=False), doc=doc)
+    run = thickness_map.run([b], ThicknessOptions(per="face", threshold=5.0, on_brep=False, max_edge="auto"), doc=doc)
     s = run.solids[0]
     m = s.meshed
     n = np.cross(m.vertices[m.triangles[:, 1]] - m.vertices[m.triangles[:, 0]],
@@ -75,7 +75,7 @@ def body(c):
     # its edges. FreeCAD's mesh, measured as a mesh, reads false thin spots where rays start on the
     # blends' chords; on the B-rep every sample reads the sheet's 0.3 or more, and the minimum is 0.3.
     plate = solids.thin_blended_plate(doc)
-    brep = thickness_map.run([plate], ThicknessOptions(per="face", create_objects=False))
+    brep = thickness_map.run([plate], ThicknessOptions(per="face", max_edge="auto", create_objects=False))
     mesh = thickness_map.run([plate], ThicknessOptions(per="face", on_brep=False, create_objects=False))
     c.check(brep.model.on_brep and not mesh.model.on_brep, "on_brep: default on, off when asked")
     bv, mv = brep.solids[0].valid, mesh.solids[0].valid
@@ -85,9 +85,10 @@ def body(c):
     c.near(brep.solids[0].stats.summary.min, 0.3, 1e-6 * 43, "plate on the B-rep: summary minimum")
     c.check(float(mv.min()) < 0.5 * 0.3, "plate on FreeCAD's mesh: the false thin spots this is about (min %.4g)"
             % float(mv.min()))
-    # Split on the B-rep too (the default: 4% of the size), each piece still on its face: more
-    # samples on the big flat faces, the same minimum.
-    whole = thickness_map.run([plate], ThicknessOptions(per="face", max_edge=0, create_objects=False))
+    # Split on the B-rep too (max_edge "auto": 4% of the size), each piece still on its face: more
+    # samples on the big flat faces, the same minimum. Not split by default, as in the CLI.
+    whole = thickness_map.run([plate], ThicknessOptions(per="face", create_objects=False))
+    c.check(whole.model.max_edge == 0, "long edges are not split by default (max_edge %r)" % whole.model.max_edge)
     c.check(len(bv) > 4 * len(whole.solids[0].valid), "plate on the B-rep, split: %d samples, unsplit %d"
             % (len(bv), len(whole.solids[0].valid)))
     c.near(float(whole.solids[0].valid.min()), 0.3, 1e-6 * 43, "plate on the B-rep, unsplit: min is the sheet")
@@ -123,6 +124,57 @@ def body(c):
     run = thickness_map.run([cube], ThicknessOptions(per="face", method="sphere", max_edge=0, create_objects=False))
     c.near(run.solids[0].percentile(50), 20.0 / 3.0, 1e-3, "cube (12 triangles) sphere-method median")
     c.check(len(run.solids[0].values) == 12, "max_edge=0: CAD triangles kept as they are")
+
+    # The default legend: the 2nd to 98th percentile of the samples without a threshold, 0 to 4x
+    # the threshold with one; walls beyond an end are clamped, and the legend says so.
+    tall = solids.box(doc, "Tall", (2, 10, 100))  # walls 2 (most samples), 10, and 100 (under 2%)
+    doc.recompute()
+    run = thickness_map.run([tall], ThicknessOptions(per="face", max_edge="auto", create_objects=False))
+    v = np.concatenate([s.valid for s in run.solids])
+    lo, hi = run.color_range
+    c.near(lo, float(np.percentile(v, 2)), 1e-12, "default legend low end is P2")
+    c.near(hi, float(np.percentile(v, 98)), 1e-12, "default legend high end is P98")
+    c.check(lo == 2.0 and hi == 10.0 and run.clamped == (False, True),
+            "the 100 mm end walls are clamped to the high end: range (%.4g, %.4g), clamped %s" % (lo, hi, run.clamped))
+    c.check("P2 to P98" in run.summary() and "thicker walls drawn as its high end" in run.summary(),
+            "the summary says how the legend was chosen: " + run.legend_text())
+    run = thickness_map.run([tall], ThicknessOptions(per="face", threshold=1.5, create_objects=False))
+    c.check(run.color_range == (0.0, 6.0) and run.clamped == (False, True), "with a 1.5 mm threshold the legend is 0 to 6: %s" % (run.color_range,))
+    run = thickness_map.run([tall], ThicknessOptions(per="face", color_min=1.0, color_max=3.0, create_objects=False))
+    c.check(run.color_range == (1.0, 3.0), "a legend range set by the user is kept: %s" % (run.color_range,))
+
+    # The same defaults as the CLI and Python: Pierce's tessellation_defaults().
+    from pierce_fc.tessellate import tessellation_defaults
+    pierce_defaults = __import__("pierce_fc.locate", fromlist=["import_pierce"]).import_pierce().tessellation_defaults()
+    c.check(tessellation_defaults() == dict(pierce_defaults) and pierce_defaults["max_edge"] == 0,
+            "FreeCAD takes Pierce's tessellation defaults: %s" % tessellation_defaults())
+
+    # Re-running on the same solids replaces the previous result (unless asked to keep it); results
+    # are labelled with the source's Label, also one ending in digits.
+    fillet = solids.box(doc, "Fillet006", (3, 3, 3), at=(0, 50, 0))
+    fillet.Label = "Fillet006"
+    doc.recompute()
+
+    def maps():
+        return [g for g in doc.Objects if getattr(g, "PierceAnalysis", None) == "thickness" and
+                getattr(g, "PierceSources", "").startswith(fillet.Name + ":")]
+    for _ in range(2):
+        run = thickness_map.run([fillet], ThicknessOptions(per="face"), doc=doc)
+    c.check(len(maps()) == 1, "re-running leaves one result: %s" % [g.Label for g in maps()])
+    c.check(run.solids[0].result_object.Label == "Thickness Fillet006" and run.group.Label == "Thickness map Fillet006",
+            "labels name the source by its Label: %r, %r" % (run.solids[0].result_object.Label, run.group.Label))
+    thickness_map.run([fillet], ThicknessOptions(per="face", keep_previous=True), doc=doc)
+    c.check(len(maps()) == 2, "keep_previous keeps the previous result: %d" % len(maps()))
+
+    # The caliper on the map: a point picked on the result mesh is measured on its source solid.
+    mesh_obj = run.solids[0].result_object
+    reading = thickness_map.caliper_on_map(mesh_obj, (1.0, 51.0, 3.0))
+    c.check(reading.status == "ok" and abs(reading.thickness - 3.0) < 1e-9 and reading.label == "Fillet006",
+            "caliper on the map reads the 3 mm box: " + reading.text())
+    fillet.Placement.Base = FreeCAD.Vector(100, 0, 0)
+    doc.recompute()
+    c.raises(thickness_map.UserError, lambda: thickness_map.caliper_on_map(mesh_obj, (1.0, 51.0, 3.0)),
+             "caliper on the map of a moved solid", contains="moved or edited")
 
     # Cancelling (a token set before or during the run, or a progress callback saying no) raises
     # pierce.Cancelled and adds nothing to the document.

@@ -132,6 +132,35 @@ class ThicknessTest(unittest.TestCase):
             pierce.thickness(s, cancel=tok)
 
 
+class SharedDefaultsTest(unittest.TestCase):
+    def test_default_color_range(self):
+        values = np.arange(1.0, 101.0)  # 1..100: P2 = 2.98, P98 = 98.02 (linear interpolation)
+        lo, hi = pierce.default_color_range(values)
+        self.assertAlmostEqual(lo, np.percentile(values, 2), places=12)
+        self.assertAlmostEqual(hi, np.percentile(values, 98), places=12)
+        self.assertEqual(pierce.COLOR_RANGE_PERCENTILES, (2.0, 98.0))
+        # A thin threshold T: 0 to 4 T, whatever the values.
+        self.assertEqual(pierce.default_color_range(values, 1.5), (0.0, 4.0 * 1.5))
+        self.assertEqual(pierce.COLOR_RANGE_THIN_FACTOR, 4.0)
+        # Non-finite values are left out; none at all gives (0, 1); one value a non-empty range.
+        self.assertEqual(pierce.default_color_range([math.nan, 2.0, math.inf, 2.0])[0], 2.0)
+        self.assertGreater(*reversed(pierce.default_color_range([2.0, 2.0])))
+        self.assertEqual(pierce.default_color_range([]), (0.0, 1.0))
+
+    def test_thickness_defaults_are_the_functions_defaults(self):
+        d = pierce.thickness_defaults()
+        self.assertEqual(d, {"method": "ray", "per": "vertex"})
+        scene = scene_of(gen.cube_grid(1)[0])
+        self.assertEqual(pierce.thickness(scene).per, d["per"])
+
+    def test_tessellation_defaults(self):
+        d = pierce.tessellation_defaults()
+        self.assertEqual(set(d), {"linear_deflection", "angular_deflection", "fold_remesh_rounds", "max_edge"})
+        self.assertEqual(d["max_edge"], 0.0)  # long edges are not split unless asked
+        with self.assertRaises(TypeError):
+            pierce.load("x.stl", deflection=1.0)  # a misspelt option is an error, not ignored
+
+
 class OverlapTest(unittest.TestCase):
     def test_interpenetration_depth_and_contacts(self):
         s = scene_of(gen.box((0, 0, 0), (10, 10, 10), "a"), gen.box((7.5, 1, 1), (17.5, 9, 9), "b"),

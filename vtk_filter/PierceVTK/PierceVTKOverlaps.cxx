@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
@@ -15,6 +16,7 @@
 
 #include "PierceVTKProgress.h"
 #include "PierceVTKSurfaces.h"
+#include "pierce/enum_names.h"
 #include "pierce/kernel.h"
 
 namespace pierce_vtk {
@@ -108,6 +110,36 @@ void AttachOverlaps(const OverlapResults& results, Surfaces& surfaces) {
 }
 
 void AddOverlapStatistics(const OverlapResults& results, vtkFieldData* field_data) {
+  if (results.pairs) {
+    // The pairs of solids by kind, as `pierce overlaps --clearance` lists them: one tuple per pair.
+    auto kind = NewArray<vtkStringArray>("PairKind");
+    auto solid_a = NewArray<vtkIntArray>("PairSolidA");
+    auto solid_b = NewArray<vtkIntArray>("PairSolidB");
+    auto gap = NewArray<vtkDoubleArray>("PairGap");
+    auto depth = NewArray<vtkDoubleArray>("PairDepth");
+    auto overlap_length = NewArray<vtkDoubleArray>("PairOverlapLength");
+    auto volume = NewArray<vtkDoubleArray>("PairVolume");
+    auto point = NewArray<vtkDoubleArray>("PairPoint", 0, 3);
+    auto point_b = NewArray<vtkDoubleArray>("PairPointB", 0, 3);
+    for (const pa::SolidPair& p : results.pairs->pairs) {
+      kind->InsertNextValue(std::string(pierce::enum_name(p.kind)));
+      solid_a->InsertNextValue(int(p.solid_a));
+      solid_b->InsertNextValue(int(p.solid_b));
+      gap->InsertNextValue(p.gap);
+      depth->InsertNextValue(p.depth);
+      overlap_length->InsertNextValue(p.overlap_length);
+      volume->InsertNextValue(p.volume);
+      point->InsertNextTuple3(p.point.x, p.point.y, p.point.z);
+      point_b->InsertNextTuple3(p.point_b.x, p.point_b.y, p.point_b.z);
+    }
+    for (vtkAbstractArray* a :
+         {static_cast<vtkAbstractArray*>(kind), static_cast<vtkAbstractArray*>(solid_a),
+          static_cast<vtkAbstractArray*>(solid_b), static_cast<vtkAbstractArray*>(gap),
+          static_cast<vtkAbstractArray*>(depth), static_cast<vtkAbstractArray*>(overlap_length),
+          static_cast<vtkAbstractArray*>(volume), static_cast<vtkAbstractArray*>(point),
+          static_cast<vtkAbstractArray*>(point_b)})
+      field_data->AddArray(a);
+  }
   if (!results.rays) return;
   const pa::CoplanarRayStats& s = results.rays->coplanar;
   field_data->AddArray(OneValue("CoplanarRayShareEqual", s.share_equal()));

@@ -35,7 +35,10 @@ bool RunOverlaps(const pierce::Scene& scene, const OverlapSettings& settings, Pr
 // Cell arrays (see vtkPierceOverlaps) on each solid's surface; OverlapCount is the active scalars.
 void AttachOverlaps(const OverlapResults& results, Surfaces& surfaces);
 
-// Field data: the coplanar-ray statistic (when the ray analysis ran).
+// Field data: the coplanar-ray statistic (when the ray analysis ran), and the pairs of solids by
+// kind (PairKind "clash" | "contact" | "clearance", PairSolidA, PairSolidB, PairGap, PairDepth,
+// PairOverlapLength, PairVolume, PairPoint, PairPointB; NaN where a field does not apply), one
+// tuple per pair in the order of pierce::analysis::SolidPairReport.
 void AddOverlapStatistics(const OverlapResults& results, vtkFieldData* field_data);
 
 // One row per solid pair and kind: interference, contact, coplanar.

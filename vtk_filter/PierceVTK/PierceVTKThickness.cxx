@@ -14,6 +14,7 @@
 #include <vtkIdList.h>
 #include <vtkDataSetAttributes.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkIdTypeArray.h>
 #include <vtkIntArray.h>
 #include <vtkPointData.h>
@@ -139,6 +140,35 @@ void AttachThickness(const pa::ThicknessResult& result, Surfaces& surfaces, cons
     if (arrays[g].brep_faces) data->AddArray(arrays[g].brep_faces);
     data->SetActiveScalars("Thickness");
   }
+}
+
+void WriteRegionTable(const pa::ThicknessResult& result, const pa::ThicknessOptions& options, vtkFieldData* field) {
+  auto add = [&](auto array, const char* name, int components) {
+    array->SetName(name);
+    array->SetNumberOfComponents(components);
+    field->AddArray(array);
+    return array;
+  };
+  auto thick = add(vtkSmartPointer<vtkUnsignedCharArray>::New(), "RegionThick", 1);
+  auto solid = add(vtkSmartPointer<vtkIntArray>::New(), "RegionSolid", 1);
+  auto extreme = add(vtkSmartPointer<vtkDoubleArray>::New(), "RegionThickness", 1);
+  auto area = add(vtkSmartPointer<vtkDoubleArray>::New(), "RegionArea", 1);
+  auto samples = add(vtkSmartPointer<vtkIdTypeArray>::New(), "RegionSamples", 1);
+  auto point = add(vtkSmartPointer<vtkDoubleArray>::New(), "RegionPoint", 3);
+  auto exit = add(vtkSmartPointer<vtkDoubleArray>::New(), "RegionExit", 3);
+  for (const auto* list : {&result.thin_regions, &result.thick_regions})
+    for (const pa::ThicknessRegion& g : *list) {
+      thick->InsertNextValue(g.thick ? 1 : 0);
+      solid->InsertNextValue(static_cast<int>(g.solid));
+      extreme->InsertNextValue(g.thickness);
+      area->InsertNextValue(g.area);
+      samples->InsertNextValue(static_cast<vtkIdType>(g.samples));
+      point->InsertNextTuple3(g.point.x, g.point.y, g.point.z);
+      exit->InsertNextTuple3(g.exit.x, g.exit.y, g.exit.z);
+    }
+  const auto [lo, hi] = pa::default_color_range(result.thickness, options.min_thickness);
+  auto range = add(vtkSmartPointer<vtkDoubleArray>::New(), "ThicknessColorRange", 2);
+  range->InsertNextTuple2(lo, hi);
 }
 
 void WriteThicknessTable(const std::vector<pa::SolidThickness>& solids, const std::vector<double>& percentile_list,

@@ -7,6 +7,7 @@
 
 #include "pierce/analysis/thickness.h"
 
+class vtkFieldData;
 class vtkTable;
 
 namespace pierce_vtk {
@@ -22,6 +23,13 @@ struct Surfaces;
 struct VertexOwners;
 void AttachThickness(const pierce::analysis::ThicknessResult& result, Surfaces& surfaces,
                      const VertexOwners* coincident = nullptr);
+
+// Field data: the region table, one tuple per Region id (thin regions, then thick ones):
+// RegionThick, RegionSolid, RegionThickness, RegionArea, RegionSamples, RegionPoint, RegionExit; and
+// ThicknessColorRange, the default colour range (default_color_range of the finite thickness
+// values and options.min_thickness).
+void WriteRegionTable(const pierce::analysis::ThicknessResult& result, const pierce::analysis::ThicknessOptions& options,
+                      vtkFieldData* field);
 
 // One row per solid: SolidId, Name, Elements, Valid, NoExit, NoNormal, Thin, Tessellation,
 // OnBRep (1: measured on the exact B-rep), Min, Max, Mean and the percentiles as P<q> (one column

@@ -44,6 +44,8 @@ pa::ThicknessOptions ThicknessOptionsOf(vtkPierceThickness& filter)
   o.max_distance =
     filter.GetMaxDistance() > 0.0 ? filter.GetMaxDistance() : std::numeric_limits<double>::infinity();
   o.min_thickness = filter.GetMinThickness();
+  o.max_thickness =
+    filter.GetMaxThickness() > 0.0 ? filter.GetMaxThickness() : std::numeric_limits<double>::infinity();
   o.cone_rays = filter.GetConeRays();
   o.cone_angle_deg = filter.GetConeAngle();
   o.cone_aggregate = pierce_vtk::EnumAt<pa::ConeAggregate>(filter.GetConeAggregate());
@@ -116,6 +118,7 @@ vtkPierceThickness::vtkPierceThickness()
   , SampleAt(POINTS)
   , MaxDistance(0.0)
   , MinThickness(0.0)
+  , MaxThickness(0.0)
   , ConeRays(30)
   , ConeAngle(120.0)
   , ConeAggregate(SHAPIRA)
@@ -198,6 +201,7 @@ int vtkPierceThickness::AnalyseSurfaces(
   }
   pierce_vtk::AttachThickness(result, run.surfaces, surfaces.distributed && !perCell ? &owners : nullptr);
   pierce_vtk::StoreSurfaceOutput(surfaces, input, vtkDataObject::GetData(outputVector, 0));
+  pierce_vtk::WriteRegionTable(result, options, vtkDataObject::GetData(outputVector, 0)->GetFieldData());
   const std::vector<pierce::analysis::SolidThickness> statistics = surfaces.distributed
     ? pierce_vtk::GatherThicknessStatistics(surfaces, perCell, options, run.distribution)
     : result.solids;
@@ -213,6 +217,7 @@ void vtkPierceThickness::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SampleAt: " << this->GetSampleAtAsString() << "\n";
   os << indent << "MaxDistance: " << this->MaxDistance << "\n";
   os << indent << "MinThickness: " << this->MinThickness << "\n";
+  os << indent << "MaxThickness: " << this->MaxThickness << "\n";
   os << indent << "ConeRays: " << this->ConeRays << "\n";
   os << indent << "ConeAngle: " << this->ConeAngle << "\n";
   os << indent << "ConeAggregate: " << this->GetConeAggregateAsString() << "\n";

@@ -11,8 +11,17 @@
  *  - ThicknessStatus: 0 ok, 1 no exit, 2 no normal, 3 tessellation (CAD input: an artefact of
  *    the mesh, left out of the statistics);
  *  - SolidId: the solid (block) index;
+ *  - Region: the thin (Thickness < MinThickness) or thick (> MaxThickness) region of the sample,
+ *    -1 for none: ids below the number of thin regions are thin regions, thinnest first; the
+ *    others thick regions, thickest first (pierce/analysis/thickness_regions.h);
  *  - BRepFaces (CAD input on its B-rep): B-rep faces sampled at the element, 2 or more at a
  *    vertex on an edge (the value is the smallest of their samples).
+ * Field data of output 0: the region table, one tuple per Region id (RegionThick 0/1,
+ * RegionSolid, RegionThickness: the region's minimum (thin) or maximum (thick), RegionArea: both
+ * sides of the wall, RegionSamples, RegionPoint and RegionExit: the extreme sample and where its
+ * ray leaves), and ThicknessColorRange: the colour range every Pierce front end gives the map by
+ * default (0 to 4 x MinThickness when set, else the 2nd to 98th percentile of the samples;
+ * pierce::analysis::default_color_range).
  * Output 1 (vtkTable): per-solid statistics (counts, min, max, mean, percentiles; OnBRep).
  *
  * CAD input (vtkPierceCADReader output, also after D3 or block extraction) is measured on the
@@ -108,6 +117,15 @@ public:
 
   ///@{
   /**
+   * Thick regions: samples with Thickness > MaxThickness (strictly) connected on the surface form
+   * thick regions (sink marks in moulding), as `pierce thickness --max`. Default 0: none.
+   */
+  vtkSetClampMacro(MaxThickness, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MaxThickness, double);
+  ///@}
+
+  ///@{
+  /**
    * Cone method: rays per sample (default 30), full opening angle in degrees (default 120),
    * aggregation SHAPIRA (outlier-rejecting weighted mean, default) or MEDIAN (by name:
    * "shapira", "median").
@@ -138,6 +156,7 @@ protected:
   int SampleAt;
   double MaxDistance;
   double MinThickness;
+  double MaxThickness;
   int ConeRays;
   double ConeAngle;
   int ConeAggregate;

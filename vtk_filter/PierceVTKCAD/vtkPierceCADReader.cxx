@@ -115,8 +115,8 @@ vtkSmartPointer<vtkPolyData> ToPolyData(const pierce::CadSolid& solid, int solid
 
 vtkPierceCADReader::vtkPierceCADReader()
   : FileName(nullptr)
-  , LinearDeflection(0.0)
-  , AngularDeflection(15.0)
+  , LinearDeflection(pierce::TessellationOptions{}.linear_deflection)
+  , AngularDeflection(pierce::TessellationOptions{}.angular_deflection_deg)
 {
   this->SetNumberOfInputPorts(0);
 }
@@ -154,10 +154,6 @@ int vtkPierceCADReader::RequestData(
   }
   // Every rank loads the file, so every rank can look the faces up under the same key.
   const std::int64_t modelKey = pierce::register_cad_model(this->FileName, options, model);
-  for (const std::string& warning : model.warnings)
-  {
-    vtkWarningMacro(<< this->FileName << ": " << warning);
-  }
 
   // Under MPI every rank asks for its piece: piece 0 gets the whole model, the others the same
   // blocks empty (a filter such as D3 then spreads it), so no triangle is there twice.
@@ -165,6 +161,22 @@ int vtkPierceCADReader::RequestData(
   const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
     ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
     : 0;
+  // One warning per problem: from the piece that holds the model (not once per rank), and not
+  // again when the same file is read again with the same options (the pipeline re-executing).
+  std::string reported = this->FileName;
+  reported += '\n' + std::to_string(options.linear_deflection) + ' ' + std::to_string(options.angular_deflection_deg);
+  for (const std::string& warning : model.warnings)
+  {
+    reported += '\n' + warning;
+  }
+  if (piece == 0 && reported != this->ReportedWarnings)
+  {
+    for (const std::string& warning : model.warnings)
+    {
+      vtkWarningMacro(<< this->FileName << ": " << warning);
+    }
+    this->ReportedWarnings = reported;
+  }
   vtkMultiBlockDataSet* output = vtkMultiBlockDataSet::GetData(outputVector, 0);
   output->SetNumberOfBlocks(static_cast<unsigned int>(model.solids.size()));
   for (std::size_t i = 0; i < model.solids.size(); ++i)

@@ -17,6 +17,7 @@
 #define vtkPierceCADReader_h
 
 #include "PierceVTKCADModule.h"
+#include <string> // for ReportedWarnings
 #include "vtkMultiBlockDataSetAlgorithm.h"
 
 class PIERCEVTKCAD_EXPORT vtkPierceCADReader : public vtkMultiBlockDataSetAlgorithm
@@ -67,6 +68,8 @@ protected:
   double AngularDeflection;
 
 private:
+  std::string ReportedWarnings;  // file, options and warnings last reported (once per problem)
+
   vtkPierceCADReader(const vtkPierceCADReader&) = delete;
   void operator=(const vtkPierceCADReader&) = delete;
 };

@@ -15,6 +15,22 @@ double percentile_sorted(const std::vector<double>& sorted, double q) {
   return sorted[lo] + (sorted[hi] - sorted[lo]) * f;
 }
 
+std::pair<double, double> default_color_range(std::vector<double> values, double min_thickness) {
+  double lo = 0, hi = 1;
+  if (min_thickness > 0 && std::isfinite(min_thickness)) {
+    hi = kColorRangeThinFactor * min_thickness;
+  } else {
+    values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return !std::isfinite(v); }),
+                 values.end());
+    if (values.empty()) return {lo, hi};
+    std::sort(values.begin(), values.end());
+    lo = percentile_sorted(values, kColorRangePercentiles[0]);
+    hi = percentile_sorted(values, kColorRangePercentiles[1]);
+  }
+  if (!(hi > lo)) hi = lo + std::max(std::abs(lo) * 1e-3, 1e-9);  // a uniform wall: one colour
+  return {lo, hi};
+}
+
 Summary summarize(std::vector<double> values, const std::vector<double>& percentiles, int histogram_bins) {
   values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return !std::isfinite(v); }),
                values.end());

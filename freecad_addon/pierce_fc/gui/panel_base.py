@@ -22,6 +22,9 @@ class PanelBase:
         self.form = QtWidgets.QWidget()
         self.form.setWindowTitle(self.TITLE)
         self.layout = QtWidgets.QVBoxLayout(self.form)
+        # The task view frames the panel already; its own margins would cost the default Combo
+        # View (264 px) the width of a field.
+        self.layout.setContentsMargins(0, 0, 0, 0)
         self.build_options(self.layout)
         row = QtWidgets.QHBoxLayout()
         self.run_button = QtWidgets.QPushButton(self.RUN_TEXT)
@@ -57,7 +60,7 @@ class PanelBase:
     # --- running ---
     def set_message(self, text, error=False):
         self.message.setStyleSheet("color: #b00020;" if error else "")
-        self.message.setText(text)
+        self.message.setText(wrappable(text))
 
     def on_run(self):
         from ..locate import PierceUnavailable, import_pierce
@@ -102,7 +105,47 @@ class PanelBase:
         """A group box called `title` added to `layout`; returns its form layout for the rows."""
         box = QtWidgets.QGroupBox(title)
         layout.addWidget(box)
-        return QtWidgets.QFormLayout(box)
+        form = QtWidgets.QFormLayout(box)
+        # In the default Combo View (264 px) a label and a wide field do not fit on one line: the
+        # field goes below its label.
+        form.setRowWrapPolicy(QtWidgets.QFormLayout.WrapLongRows)
+        form.setFieldGrowthPolicy(QtWidgets.QFormLayout.AllNonFixedFieldsGrow)
+        return form
+
+    def collapsible_form(self, layout, title, expanded=False):
+        """A form under a button `title` that shows or hides it (hidden unless `expanded`), added
+        to `layout`: options most runs leave alone, so that the results fit on the first screen.
+        Returns the form layout for the rows."""
+        button = QtWidgets.QToolButton()
+        button.setText(title)
+        button.setCheckable(True)
+        button.setChecked(expanded)
+        button.setToolButtonStyle(QtCore.Qt.ToolButtonTextBesideIcon)
+        button.setArrowType(QtCore.Qt.DownArrow if expanded else QtCore.Qt.RightArrow)
+        button.setAutoRaise(True)
+        box = QtWidgets.QGroupBox()
+        box.setVisible(expanded)
+
+        def toggle(on):
+            box.setVisible(on)
+            button.setArrowType(QtCore.Qt.DownArrow if on else QtCore.Qt.RightArrow)
+        button.toggled.connect(toggle)
+        layout.addWidget(button)
+        layout.addWidget(box)
+        form = QtWidgets.QFormLayout(box)
+        form.setRowWrapPolicy(QtWidgets.QFormLayout.WrapLongRows)
+        form.setFieldGrowthPolicy(QtWidgets.QFormLayout.AllNonFixedFieldsGrow)
+        form.toggle_button = button
+        return form
+
+    def scroll_to(self, widget):
+        """Scrolls the task view so that `widget` (a result) is in sight."""
+        area = self.form.parent()
+        while area is not None and not isinstance(area, QtWidgets.QScrollArea):
+            area = area.parent()
+        if area is not None:
+            QtWidgets.QApplication.processEvents()
+            area.ensureWidgetVisible(widget, 0, 0)
 
     def results_table(self, layout, columns):
         """A read-only table with a header of `columns`, added to `layout`; rows are filled by
@@ -152,6 +195,14 @@ class PanelBase:
 
     def isAllowedAlterDocument(self):
         return True
+
+
+def wrappable(text):
+    """`text` with a zero-width space after each '_', '-', '/' and '.', so that a word-wrapped
+    label can break long names (a STEP part's name has no spaces) instead of widening the panel."""
+    for ch in "_-/.":
+        text = text.replace(ch, ch + "\u200b")
+    return text
 
 
 def selected_objects():

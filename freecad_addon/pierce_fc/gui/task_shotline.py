@@ -17,8 +17,10 @@ class ShotlinePanel(PanelBase):
 
     def build_options(self, layout):
         f = self.options_form(layout, "Ray")
-        self.mode_point = QtWidgets.QRadioButton("From a point along a direction")
-        self.mode_grid = QtWidgets.QRadioButton("Grid through the selected face")
+        self.mode_point = QtWidgets.QRadioButton("Point and direction")
+        self.mode_point.setToolTip("One ray from a point along a direction")
+        self.mode_grid = QtWidgets.QRadioButton("Grid through a face")
+        self.mode_grid.setToolTip("A grid of rays entering through the selected face")
         self.mode_point.setChecked(True)
         self.origin = [double_spin(0.0, -1e9, 1e9, suffix="") for _ in range(3)]
         self.direction = [double_spin(v, -1e9, 1e9, suffix="") for v in (0.0, 0.0, 1.0)]
@@ -28,12 +30,13 @@ class ShotlinePanel(PanelBase):
         self.grid = QtWidgets.QSpinBox()
         self.grid.setRange(1, 256)
         self.grid.setValue(8)
-        self.all_visible = check_box("Through all visible solids of the document", True)
+        self.all_visible = check_box("Through all visible solids", True,
+                                     tooltip="All visible solids of the document; otherwise the selected ones")
         self.csg = QtWidgets.QLineEdit()
         self.csg.setPlaceholderText("optional, e.g. difference(Plate, Hole)")
-        self.markers = check_box("Add line segments to the document", True)
+        self.markers = check_box("Add line segments", True, tooltip="Adds the intervals to the document as lines")
         f.addRow(self.mode_point)
-        f.addRow("Point x, y, z", _row(self.origin))
+        f.addRow("Point", _row(self.origin))
         f.addRow("Direction", _row(self.direction))
         f.addRow(pick)
         f.addRow(self.mode_grid)
@@ -96,9 +99,11 @@ class ShotlinePanel(PanelBase):
 
 
 def _row(widgets):
+    """x, y and z fields stacked, each with its axis name: three side by side do not fit the
+    default Combo View."""
     w = QtWidgets.QWidget()
-    h = QtWidgets.QHBoxLayout(w)
-    h.setContentsMargins(0, 0, 0, 0)
-    for x in widgets:
-        h.addWidget(x)
+    f = QtWidgets.QFormLayout(w)
+    f.setContentsMargins(0, 0, 0, 0)
+    for axis, x in zip("xyz", widgets):
+        f.addRow(axis, x)
     return w

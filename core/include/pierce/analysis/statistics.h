@@ -29,4 +29,14 @@ Summary summarize(std::vector<double> values, const std::vector<double>& percent
 // Percentile q in [0,100] of sorted finite values (linear interpolation); NaN when empty.
 double percentile_sorted(const std::vector<double>& sorted, double q);
 
+// The colour range every front end gives a thickness map by default (the CLI's PNG, FreeCAD's
+// legend, ParaView's ThicknessColorRange): with a thin threshold min_thickness > 0, 0 to
+// kColorRangeThinFactor x min_thickness (thin walls stand out, walls a few times thicker get the
+// ramp's colours); otherwise the kColorRangePercentiles of the finite values, so that a few slivers
+// or long lines of sight do not squeeze every other wall into one colour. Values outside are drawn
+// in the colour of the nearer end. {0, 1} without finite values; an empty range is widened.
+inline constexpr double kColorRangeThinFactor = 4.0;
+inline constexpr double kColorRangePercentiles[2] = {2.0, 98.0};
+std::pair<double, double> default_color_range(std::vector<double> values, double min_thickness = 0);
+
 }  // namespace pierce::analysis
