@@ -212,7 +212,9 @@
       var bar = el('span', { className: 'bar' });
       bar.style.background = 'linear-gradient(' + stops.join(',') + ')';
       var ticks = el('span', { className: 'ticks' });
+      var thresholdAt = (range[1] - threshold) / (range[1] - range[0]);
       for (var j = 0; j <= 4; j++) {
+        if (threshold > 0 && Math.abs(thresholdAt - j / 4) < 0.08) continue;  // the threshold's label is there
         var v = range[1] - (range[1] - range[0]) * j / 4;
         var s = el('span', { text: num(v) });
         s.style.top = (j * 25) + '%';
@@ -220,7 +222,7 @@
       }
       if (threshold > 0 && threshold > range[0] && threshold < range[1]) {
         var th = el('span', { className: 'threshold', text: '\u2190 ' + num(threshold) + ' thin' });
-        th.style.top = (100 * (range[1] - threshold) / (range[1] - range[0])) + '%';
+        th.style.top = (100 * thresholdAt) + '%';
         ticks.appendChild(th);
       }
       legend.appendChild(el('div', null, [bar, ticks]));
@@ -287,12 +289,15 @@
     requestRender();
   }
 
-  // Moves the camera to look at `target` from `distance`, along the current viewing direction,
-  // over `ms` milliseconds; calls done() when there.
-  function flyTo(target, distance, ms, done) {
+  // Moves the camera to look at `target` from `distance`, from the side `side` points to (a unit
+  // vector, or null: the current viewing direction), over `ms` milliseconds; calls done() when there.
+  function flyTo(target, distance, side, ms, done) {
     var camera = three.camera, controls = three.controls;
     var fromPos = camera.position.clone(), fromTarget = controls.target.clone();
     var dir = fromPos.clone().sub(fromTarget).normalize();
+    // From the finding's side, tilted a little towards the current view so the scene keeps some
+    // depth (little: more would look at a pocket's floor through its wall).
+    if (side) dir = side.clone().addScaledVector(dir, 0.1).normalize();
     var toPos = target.clone().addScaledVector(dir, distance);
     var start = performance.now();
     function step() {
@@ -332,18 +337,20 @@
     });
     if (three.segment) { three.scene.remove(three.segment); three.segment = null; }
     var p = new THREE.Vector3(f.point[0], f.point[1], f.point[2]);
-    var target = p.clone(), span = 0;
+    var target = p.clone(), span = 0, side = null;
     if (f.point_b) {
       var b = new THREE.Vector3(f.point_b[0], f.point_b[1], f.point_b[2]);
       span = p.distanceTo(b);
+      // A wall is seen from outside its sampled face: its ray ran inward, from point to point_b.
+      if ((f.kind === 'thin' || f.kind === 'thick') && span > 0) side = p.clone().sub(b).normalize();
       target.add(b).multiplyScalar(0.5);
       var g = new THREE.BufferGeometry().setFromPoints([p, b]);
       three.segment = new THREE.Line(g, new THREE.LineBasicMaterial({ color: 0x000000, depthTest: false }));
       three.segment.renderOrder = 11;
       three.scene.add(three.segment);
     }
-    var distance = Math.max(span * 8, three.diag * 0.35);
-    flyTo(target, distance, 700, function () { root.setAttribute('data-selected', String(n)); });
+    var distance = Math.max(span * 8, three.diag * 0.45);
+    flyTo(target, distance, side, 700, function () { root.setAttribute('data-selected', String(n)); });
   }
 
   function findingRow(f, cells) {
@@ -574,6 +581,9 @@
     });
     document.getElementById('reset-view').addEventListener('click', resetView);
     render();
+    // Where the view is on the page, in CSS pixels: the browser tests look at those pixels.
+    var box = view.getBoundingClientRect();
+    root.setAttribute('data-view-rect', [box.left, box.top, box.width, box.height].map(Math.round).join(','));
   }
   root.setAttribute('data-ready', '1');
 
