@@ -104,14 +104,15 @@ def _pierce_binary():
 
 
 def report(scene, path, *, min_thickness=0.0, max_thickness=None, clearance=0.0, method="ray", per="vertex",
-           kernel=None, title=None, force=False):
+           kernel=None, title=None, linear_deflection=None, angular_deflection=None, force=False):
     """Writes the HTML report of `pierce report` (docs/REPORT.md) for `scene` to `path`: one
     self-contained file with the 3D thickness map, thin and thick walls, contact / clash /
     clearance pairs, statistics, model checks and what exactness cost.
 
     `scene`: a Scene from pierce.load (its files are read again by the `pierce` program with the
     same tessellation options, so CAD solids keep their B-rep), or any other Scene (its meshes are
-    written to a temporary OBJ, one object per geometry), or a list of model file paths. Raises
+    written to a temporary OBJ, one object per geometry), or a list of model file paths (CAD ones
+    tessellated with linear_deflection and angular_deflection when given, as pierce.load). Raises
     FileExistsError if `path` exists and not force, InputError for what `pierce` rejects. Returns
     `path`."""
     import os
@@ -125,6 +126,10 @@ def report(scene, path, *, min_thickness=0.0, max_thickness=None, clearance=0.0,
         options = getattr(scene, "load_options", None) if isinstance(scene, Scene) else None
         if isinstance(scene, (list, tuple)):
             args += [str(p) for p in scene]
+            if linear_deflection is not None:
+                args += ["--deflection", repr(float(linear_deflection))]
+            if angular_deflection is not None:
+                args += ["--angular-deflection", repr(float(angular_deflection))]
         elif options is not None and len(scene) == sum(f["geometries"][1] for f in scene.load_info):
             args += options["paths"]
             args += ["--deflection", repr(options["linear_deflection"]),

@@ -5,6 +5,7 @@ import FreeCADGui as Gui
 
 from .. import overlap_check
 from ..overlap_check import OverlapOptions
+from .export_report import add_export_button
 from .panel_base import PanelBase, check_box, double_spin
 from .qt import QtWidgets
 
@@ -40,6 +41,8 @@ class OverlapPanel(PanelBase):
         self.table.setSelectionMode(QtWidgets.QAbstractItemView.SingleSelection)
         self.table.horizontalHeader().setStretchLastSection(True)
         self.table.itemSelectionChanged.connect(self.on_row)
+        self.export_button = add_export_button(self, layout, lambda: (
+            self.solids_to_analyse(self.whole_document.isChecked()), dict(deflection=self.deflection.value())))
 
     def compute(self, progress, cancel):
         objects = self.solids_to_analyse(self.whole_document.isChecked())
