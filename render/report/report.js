@@ -5,7 +5,9 @@
 // Contracts the browser tests rely on (tests/report/):
 //  - <html data-ready="1"> once the page is built and the view drawn;
 //  - <html data-selected="N"> once finding N is selected and the camera has arrived; a row click
-//    and a page address ending in #finding=N take the same path, selectFinding(N).
+//    and a page address ending in #finding=N take the same path, selectFinding(N) (a click flies
+//    the camera there, an address puts it there at once);
+//  - #map=thickness|pairs|plain in the address opens that map (with finding=N: #map=pairs&finding=4).
 (function () {
   'use strict';
 
@@ -186,10 +188,7 @@
         } else if (currentMap === 'pairs' && three.pairCategory) {
           var cat = PAIR_CATEGORY[three.pairCategory[t]] || 'free';
           col = PAIR_COLOURS[cat];
-          if (cat === 'clearance' && data.options.clearance > 0) {
-            var f = Math.min(1, three.pairGap[t] / data.options.clearance);
-            col = [0.95 - 0.8 * f, 0.85 - 0.2 * f, 0.2 + 0.05 * f];
-          }
+          if (cat === 'clearance' && data.options.clearance > 0) col = clearanceColour(three.pairGap[t] / data.options.clearance);
         } else {
           col = SOLID_TINTS[three.triSolid[t] % SOLID_TINTS.length];
         }
@@ -201,6 +200,12 @@
     three.surface.geometry.attributes.color.needsUpdate = true;
     drawLegend();
     requestRender();
+  }
+
+  // Clearance triangles: yellow where they touch (gap 0) to green at the clearance asked for.
+  function clearanceColour(f) {
+    f = Math.min(1, Math.max(0, f));
+    return [0.95 - 0.8 * f, 0.85 - 0.2 * f, 0.2 + 0.05 * f];
   }
 
   function drawLegend() {
@@ -232,7 +237,11 @@
       legend.appendChild(el('div', { text: 'Between solids' }));
       legend.appendChild(swatch(PAIR_COLOURS.clash, 'clash'));
       legend.appendChild(swatch(PAIR_COLOURS.contact, 'contact'));
-      if (data.options.clearance > 0) legend.appendChild(swatch(PAIR_COLOURS.clearance, 'gap < ' + num(data.options.clearance)));
+      if (data.options.clearance > 0) {
+        var gap = swatch(PAIR_COLOURS.clearance, 'gap 0 \u2013 ' + num(data.options.clearance));
+        gap.firstChild.style.background = 'linear-gradient(90deg,' + css(clearanceColour(0)) + ',' + css(clearanceColour(1)) + ')';
+        legend.appendChild(gap);
+      }
       legend.appendChild(swatch(PAIR_COLOURS.free, 'free'));
     } else {
       legend.appendChild(el('div', { text: 'Solids' }));
@@ -281,7 +290,7 @@
   }
 
   function resetView() {
-    var dir = new THREE.Vector3(1, -1.3, 0.9).normalize();
+    var dir = new THREE.Vector3(0.9, -1.2, 1.5).normalize();  // from above: pockets show their floors
     three.controls.target.copy(three.centre);
     three.camera.position.copy(three.centre).addScaledVector(dir, three.diag * 1.6);
     three.camera.up.set(0, 0, 1);
@@ -301,7 +310,7 @@
     var toPos = target.clone().addScaledVector(dir, distance);
     var start = performance.now();
     function step() {
-      var s = Math.min(1, (performance.now() - start) / ms);
+      var s = ms > 0 ? Math.min(1, (performance.now() - start) / ms) : 1;
       var e = s * s * (3 - 2 * s);
       camera.position.lerpVectors(fromPos, toPos, e);
       controls.target.lerpVectors(fromTarget, target, e);
@@ -317,7 +326,9 @@
 
   var rowsByFinding = {};
 
-  function selectFinding(n) {
+  // Selects finding n: marks its row and marker and moves the camera to it, flying over 0.7 s
+  // when `fly` (a click), at once otherwise (an address naming it, as the page opens).
+  function selectFinding(n, fly) {
     var f = null;
     data.findings.forEach(function (x) { if (x.n === n) f = x; });
     if (!f) return;
@@ -328,7 +339,9 @@
       var box = r.closest('.table-box');
       if (box) box.scrollTop = r.offsetTop - box.clientHeight / 2;
     }
-    try { history.replaceState(null, '', '#finding=' + n); } catch (e) { /* file: URLs in some browsers */ }
+    try {
+      history.replaceState(null, '', '#' + (currentMap !== 'thickness' ? 'map=' + currentMap + '&' : '') + 'finding=' + n);
+    } catch (e) { /* file: URLs in some browsers */ }
     if (!three) { root.setAttribute('data-selected', String(n)); return; }
     three.markers.forEach(function (m) {
       var on = m.userData.finding === n;
@@ -350,12 +363,12 @@
       three.scene.add(three.segment);
     }
     var distance = Math.max(span * 8, three.diag * 0.45);
-    flyTo(target, distance, side, 700, function () { root.setAttribute('data-selected', String(n)); });
+    flyTo(target, distance, side, fly ? 700 : 0, function () { root.setAttribute('data-selected', String(n)); });
   }
 
   function findingRow(f, cells) {
     var r = row([cell(String(f.n))].concat(cells), { className: 'finding', 'data-finding': String(f.n) });
-    r.addEventListener('click', function () { selectFinding(f.n); });
+    r.addEventListener('click', function () { selectFinding(f.n, true); });
     rowsByFinding[f.n] = r;
     return r;
   }
@@ -565,6 +578,11 @@
   buildProvenance();
   if (!data.mesh.pairs) document.querySelector('input[value="pairs"]').disabled = true;
 
+  var wantedMap = /(?:^#|&)map=(thickness|pairs|plain)\b/.exec(location.hash);
+  if (wantedMap && !(wantedMap[1] === 'pairs' && !data.mesh.pairs)) {
+    currentMap = wantedMap[1];
+    document.querySelector('input[name="map"][value="' + currentMap + '"]').checked = true;
+  }
   if (buildView()) {
     colourMesh();
     Array.prototype.forEach.call(document.querySelectorAll('input[name="map"]'), function (r) {
@@ -588,5 +606,5 @@
   root.setAttribute('data-ready', '1');
 
   var wanted = /(?:^#|&)finding=(\d+)/.exec(location.hash);
-  if (wanted) selectFinding(parseInt(wanted[1], 10));
+  if (wanted) selectFinding(parseInt(wanted[1], 10), false);
 })();

@@ -10,8 +10,9 @@ the file.
 
     report_browser.py --pierce PIERCE --make-models MAKE_MODELS --chromium CHROMIUM [--screenshots DIR]
 
---screenshots DIR keeps the default views as DIR/report_cad_part.png and DIR/report_assembly.png
-(the pictures of docs/REPORT.md).
+--screenshots DIR also opens each report as docs/REPORT.md shows it (the part with finding 2
+selected, the assembly's clearance / clash map with its clash selected), checks it as above and
+keeps the screenshots as DIR/report_cad_part.png and DIR/report_assembly.png.
 """
 import argparse
 import os
@@ -80,7 +81,7 @@ def finding_rows(dom):
 
 
 def check_report(name, html, args, work, expected_rows):
-    """Opens report `html` twice (plain, #finding=2) and checks both; returns the default screenshot."""
+    """Opens report `html` twice (plain, #finding=2) and checks both."""
     with open(html, encoding="utf-8") as f:
         text = f.read()
     data = report_data(text)
@@ -116,7 +117,17 @@ def check_report(name, html, args, work, expected_rows):
     moved = a.shape != b.shape or float(np.mean(np.abs(a - b).max(axis=2) > 0.1)) > 0.05
     check(moved, name + ": the view with #finding=2 looks like the default one (the camera did not move)")
     print("%s: %d findings, view %.0f%% coloured" % (name, len(data["findings"]), 100 * coloured_share(a)))
-    return os.path.join(work, name + ".png")
+
+
+def screenshot_for_docs(name, html, fragment, selected, args, work):
+    """Opens report `html` at `fragment`, checks it built with finding `selected` chosen, and
+    returns its screenshot."""
+    png = os.path.join(work, name + "_docs.png")
+    dom = open_in_chromium(args.chromium, html, fragment, png, os.path.join(work, "profile"))
+    check(attribute(dom, "data-errors") == "0" and attribute(dom, "data-selected") == str(selected),
+          "%s %s: script errors or finding %d not selected" % (name, fragment, selected))
+    check(coloured_share(view_pixels(dom, png)) > 0.05, "%s %s: the 3D view is blank" % (name, fragment))
+    return png
 
 
 def main():
@@ -136,14 +147,17 @@ def main():
         subprocess.run([args.pierce, "report", os.path.join(work, "blocks.obj"), "--per", "face", "--min", "1.2",
                         "--clearance", "0.5", "-o", assembly], check=True, stdout=subprocess.DEVNULL)
         # The thin walls with their minimum thickness; the pairs with their kind and gap or depth.
-        shots = [check_report("cad_part", part, args, work, {1: ["pocket_part", r"0\.6"], 2: ["pocket_part", r"0\.8"]}),
-                 check_report("assembly", assembly, args, work,
-                              {4: ["clash", "c", "d", r"0\.50?\d*"], 5: ["contact", "a", "b", "0"],
-                               6: ["clearance", "b", "c", r"0\.3"]})]
-        if args.screenshots and not failures:
-            os.makedirs(args.screenshots, exist_ok=True)
-            for shot in shots:
-                shutil.copy(shot, os.path.join(args.screenshots, "report_" + os.path.basename(shot)))
+        check_report("cad_part", part, args, work, {1: ["pocket_part", r"0\.6"], 2: ["pocket_part", r"0\.8"]})
+        check_report("assembly", assembly, args, work, {4: ["clash", "c", "d", r"0\.50?\d*"],
+                                                        5: ["contact", "a", "b", "0"],
+                                                        6: ["clearance", "b", "c", r"0\.3"]})
+        if args.screenshots:
+            shots = {"cad_part": screenshot_for_docs("cad_part", part, "#finding=2", 2, args, work),
+                     "assembly": screenshot_for_docs("assembly", assembly, "#map=pairs&finding=4", 4, args, work)}
+            if not failures:
+                os.makedirs(args.screenshots, exist_ok=True)
+                for name, png in shots.items():
+                    shutil.copy(png, os.path.join(args.screenshots, "report_%s.png" % name))
     finally:
         shutil.rmtree(work, ignore_errors=True)
     if failures:
