@@ -121,8 +121,10 @@ int run(int argc, char** argv) {
       for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) text.append(buf, n);
       std::fclose(f);
     }
-    std::printf("chromium (SwiftShader): page %s, %s script errors, %.1f s to load, draw and screenshot\n",
+    std::printf("chromium (SwiftShader): page %s in %s ms (its script: data, view, tables, first drawing), %s "
+                "script errors; %.1f s from start to screenshot\n",
                 html_attribute(text, "data-ready") == "1" ? "built" : "NOT built",
+                html_attribute(text, "data-build-ms").empty() ? "?" : html_attribute(text, "data-build-ms").c_str(),
                 html_attribute(text, "data-errors").empty() ? "?" : html_attribute(text, "data-errors").c_str(),
                 open_s);
   }

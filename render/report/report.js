@@ -3,7 +3,8 @@
 // docs/REPORT.md), draws the 3D view with three.js and fills the tables.
 //
 // Contracts the browser tests rely on (tests/report/):
-//  - <html data-ready="1"> once the page is built and the view drawn;
+//  - <html data-ready="1"> once the page is built and the view drawn (data-build-ms: how long that
+//    took);
 //  - <html data-selected="N"> once finding N is selected and the camera has arrived; a row click
 //    and a page address ending in #finding=N take the same path, selectFinding(N) (a click flies
 //    the camera there, an address puts it there at once);
@@ -11,6 +12,7 @@
 (function () {
   'use strict';
 
+  var started = performance.now();
   var data = JSON.parse(document.getElementById('pierce-data').textContent);
   var root = document.documentElement;
 
@@ -603,6 +605,8 @@
     var box = view.getBoundingClientRect();
     root.setAttribute('data-view-rect', [box.left, box.top, box.width, box.height].map(Math.round).join(','));
   }
+  // How long reading the data, building the view and the tables and the first drawing took.
+  root.setAttribute('data-build-ms', String(Math.round(performance.now() - started)));
   root.setAttribute('data-ready', '1');
 
   var wanted = /(?:^#|&)finding=(\d+)/.exec(location.hash);
