@@ -19,11 +19,23 @@ run "decimated view" "$PIERCE" report "$WORK/models/pocket_part.step" --deflecti
 run "full view" "$PIERCE" report "$WORK/models/pocket_part.step" --deflection 0.01 --angular-deflection 1 --per face --min 1 \
   -o "$WORK/fine_full.html"
 
+# Markup in a solid's name and in the title stays text: it can neither end the data's <script> nor
+# add elements.
+{ echo 'o </script><b>x'; echo 'v 0 0 0'; echo 'v 1 0 0'; echo 'v 0 1 0'; echo 'v 0 0 1'
+  echo 'f 1 3 2'; echo 'f 1 2 4'; echo 'f 1 4 3'; echo 'f 2 3 4'; } >"$WORK/markup.obj"
+run "markup in names" "$PIERCE" report "$WORK/markup.obj" --title '<i>&"title"</i>' -o "$WORK/markup.html"
+
 PYTHONPATH="$HERE" $PY - "$WORK" "$WORK/models/pocket_part.step" <<'PYEOF' || fail "report content"
 import os, re, sys
 from report_models import report_data, network_references
 work, step = sys.argv[1], sys.argv[2]
-pages = {n: open(os.path.join(work, n + ".html"), encoding="utf-8").read() for n in ("pocket", "blocks", "fine_small", "fine_full")}
+pages = {n: open(os.path.join(work, n + ".html"), encoding="utf-8").read()
+         for n in ("pocket", "blocks", "fine_small", "fine_full", "markup")}
+markup = pages["markup"]
+assert report_data(markup)["solid_names"] == ["</script><b>x"], report_data(markup)["solid_names"]
+assert "<title>Pierce report: &lt;i&gt;&amp;&quot;title&quot;&lt;/i&gt;</title>" in markup
+# Every "</script" is the end of one of the page's own five <script> elements.
+assert markup.count("<script") == markup.count("</script") == 5, (markup.count("<script"), markup.count("</script"))
 for name, html in pages.items():
     assert html.startswith("<!DOCTYPE html>"), name
     assert not network_references(html), (name, network_references(html)[:3])
