@@ -245,7 +245,6 @@ nlohmann::ordered_json findings_json(const ThicknessResult& r, const SolidPairRe
 
 int run_report(const ReportCli& o) {
   InterruptGuard guard;
-  if (o.out.empty()) throw InputError("-o report.html is required");
   OutputFile::check_target(o.out, o.force);  // before any long work
   const KernelKind kernel = exact_kernel_option(o.kernel);
   if (!(o.clearance >= 0) || !std::isfinite(o.clearance)) throw InputError("--clearance must be a finite number >= 0");
