@@ -510,7 +510,11 @@
   function buildExactness() {
     var box = document.getElementById('exactness-body');
     var x = data.exactness;
-    if (!x || !x.rays) {
+    if (x.skipped) {
+      box.appendChild(el('p', { text: 'Not measured: the epsilon baseline cannot trace this model (' + x.skipped + ').' }));
+      return;
+    }
+    if (!x.rays) {
       box.appendChild(el('p', { text: 'No thickness ray to compare (no sample with a normal).' }));
       return;
     }
