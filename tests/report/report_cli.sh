@@ -24,6 +24,10 @@ run "full view" "$PIERCE" report "$WORK/models/pocket_part.step" --deflection 0.
 { echo 'o </script><b>x'; echo 'v 0 0 0'; echo 'v 1 0 0'; echo 'v 0 1 0'; echo 'v 0 0 1'
   echo 'f 1 3 2'; echo 'f 1 2 4'; echo 'f 1 4 3'; echo 'f 2 3 4'; } >"$WORK/markup.obj"
 run "markup in names" "$PIERCE" report "$WORK/markup.obj" --title '<i>&"title"</i>' -o "$WORK/markup.html"
+# Coordinates beyond Embree's range: the exact kernel measures, the epsilon baseline cannot.
+{ echo 'v 0 0 0'; echo 'v 1e18 0 0'; echo 'v 0 1e18 0'; echo 'v 0 0 1e18'
+  echo 'f 1 3 2'; echo 'f 1 2 4'; echo 'f 1 4 3'; echo 'f 2 3 4'; } >"$WORK/huge.obj"
+run "beyond Embree's range" "$PIERCE" report "$WORK/huge.obj" -o "$WORK/huge.html"
 
 PYTHONPATH="$HERE" $PY - "$WORK" "$WORK/models/pocket_part.step" <<'PYEOF' || fail "report content"
 import os, re, sys
@@ -33,6 +37,9 @@ pages = {n: open(os.path.join(work, n + ".html"), encoding="utf-8").read()
          for n in ("pocket", "blocks", "fine_small", "fine_full", "markup")}
 markup = pages["markup"]
 assert report_data(markup)["solid_names"] == ["</script><b>x"], report_data(markup)["solid_names"]
+huge = report_data(open(os.path.join(work, "huge.html"), encoding="utf-8").read())
+assert "beyond what Embree" in huge["exactness"]["skipped"] and huge["exactness"]["rays"] == 0, huge["exactness"]
+assert huge["solids"][0]["valid"] == 4, huge["solids"]
 assert "<title>Pierce report: &lt;i&gt;&amp;&quot;title&quot;&lt;/i&gt;</title>" in markup
 # Every "</script" is the end of one of the page's own five <script> elements.
 assert markup.count("<script") == markup.count("</script") == 5, (markup.count("<script"), markup.count("</script"))
