@@ -20,6 +20,7 @@
 
 #include "bench_machine.h"
 #include "bench_main.h"
+#include "bench_stl.h"
 #include "bench_timing.h"
 #include "embree_reference.h"
 #include "pierce/analysis/thickness.h"
@@ -34,23 +35,6 @@ double peak_rss_mb() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
   return double(u.ru_maxrss) / 1024.0;  // kilobytes on Linux
-}
-
-void write_binary_stl(const gen::Mesh& m, const std::string& path) {
-  std::ofstream out(path, std::ios::binary);
-  char header[80] = "pierce_bench_thickness shell";
-  out.write(header, sizeof header);
-  const auto n = std::uint32_t(m.triangles.size());
-  out.write(reinterpret_cast<const char*>(&n), 4);
-  for (const Tri& t : m.triangles) {
-    float rec[12] = {};
-    for (int k = 0; k < 3; ++k)
-      for (int a = 0; a < 3; ++a) rec[3 + 3 * k + a] = float(m.vertices[t[k]][a]);
-    out.write(reinterpret_cast<const char*>(rec), sizeof rec);
-    const std::uint16_t attr = 0;
-    out.write(reinterpret_cast<const char*>(&attr), 2);
-  }
-  if (!out) throw std::runtime_error("cannot write " + path);
 }
 
 // Runs `fn` in a child process and waits; false if it failed. Keeps the child's memory out of this

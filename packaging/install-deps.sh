@@ -17,6 +17,7 @@ PACKAGES=(
   help2man man-db
   libgmp-dev clang libclang-rt-14-dev
   python3-matplotlib
+  libjs-three chromium
 )
 
 missing=()

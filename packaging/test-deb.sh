@@ -105,6 +105,10 @@ rows=$(grep -vc '^ray,' hits.csv)
 [ "$rows" -eq $((64 * 20)) ] || fail "pierce hits on plates.obj: $rows hits, expected 1280 (64 rays x 20 surfaces)"
 set +e; run pierce hits /nonexistent.obj --rays grid:axis=z,n=2 --kernel queue >/dev/null 2>err.txt; rc=$?; set -e
 [ $rc -eq 2 ] && grep -q nonexistent err.txt || fail "missing model: exit $rc, message '$(cat err.txt)'"
+# The report carries its template and three.js in the binary: nothing of the build tree is needed.
+run pierce report "$SAMPLES/plate_assembly.step" --min 3 -o report.html >/dev/null
+grep -q 'id="pierce-data"' report.html && grep -q "THREE.OrbitControls" report.html ||
+  fail "pierce report: report.html lacks its data or three.js"
 
 step "man page"
 man_file=$(run man -w pierce) || fail "man -w pierce found nothing"

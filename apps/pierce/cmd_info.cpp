@@ -28,13 +28,7 @@ int run_info(const InfoOptions& o) {
     return std::string();
   };
   // CAD solids: the check of their tessellation against the B-rep (null for meshes).
-  auto check_of = [&](std::uint32_t g) -> const TessellationCheck* {
-    for (const LoadedFile& f : files)
-      if (g >= f.first_geometry && g < f.first_geometry + f.geometry_count && g - f.first_geometry < f.cad.size() &&
-          !f.cad[g - f.first_geometry].empty())
-        return &f.cad[g - f.first_geometry].check;
-    return nullptr;
-  };
+  auto check_of = [&](std::uint32_t g) { return tessellation_check(files, g); };
   if (o.json) {
     nlohmann::ordered_json j;
     for (const LoadedFile& f : files) {

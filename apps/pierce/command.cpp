@@ -32,6 +32,33 @@ KernelKind exact_kernel_option(const std::string& name) {
   return *kernel;
 }
 
+namespace {
+std::string& recorded_command_line() {
+  static std::string line;
+  return line;
+}
+}  // namespace
+
+void record_command_line(int argc, char** argv) {
+  std::string& line = recorded_command_line();
+  line.clear();
+  for (int i = 0; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (i) line += ' ';
+    const bool plain = !a.empty() && a.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789"
+                                                         "_-+=,.:/@%#") == std::string::npos;
+    if (plain) {
+      line += a;
+      continue;
+    }
+    line += '\'';
+    for (char c : a) line += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    line += '\'';
+  }
+}
+
+const std::string& command_line() { return recorded_command_line(); }
+
 void check_report_format(const std::string& format) {
   if (format != "table" && format != "csv" && format != "json")
     throw InputError("--format '" + format + "': expected table, csv or json");

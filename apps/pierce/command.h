@@ -48,6 +48,11 @@ int write_output(const std::string& path, Format format, bool force, Write write
   return write_file(path, force, [&](std::FILE* out) { write(format, out); });
 }
 
+// The command line `pierce` was started with (main records it), each argument quoted for a POSIX
+// shell where it needs quoting: what a report says it was made by.
+void record_command_line(int argc, char** argv);
+const std::string& command_line();
+
 // The text reports of `shot` and `classify`: throws InputError unless --format names one of
 // table, csv or json.
 void check_report_format(const std::string& format);
@@ -85,5 +90,6 @@ std::function<int()> register_shot(CLI::App& app);
 std::function<int()> register_gqa(CLI::App& app);
 std::function<int()> register_run(CLI::App& app);
 std::function<int()> register_classify(CLI::App& app);
+std::function<int()> register_report(CLI::App& app);
 
 }  // namespace pierce::cli

@@ -7,13 +7,15 @@
 #include "pierce/version.h"
 
 int main(int argc, char** argv) {
+  pierce::cli::record_command_line(argc, argv);
   CLI::App app{"Pierce: exact multi-hit ray traversal"};
   app.set_version_flag("--version", "pierce " PIERCE_VERSION_STRING, "Print the version and exit");
   app.require_subcommand(1);
   std::vector<std::pair<CLI::App*, std::function<int()>>> commands;
   for (auto reg : {pierce::cli::register_hits, pierce::cli::register_info, pierce::cli::register_thickness,
                    pierce::cli::register_overlaps, pierce::cli::register_shot, pierce::cli::register_gqa,
-                   pierce::cli::register_run, pierce::cli::register_classify}) {
+                   pierce::cli::register_run, pierce::cli::register_classify,
+                   pierce::cli::register_report}) {
     const std::size_t before = app.get_subcommands({}).size();
     auto run = reg(app);
     commands.emplace_back(app.get_subcommands({})[before], std::move(run));

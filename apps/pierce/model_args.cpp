@@ -38,6 +38,14 @@ std::vector<LoadedFile> load_models(Scene& scene, const ModelArgs& args) {
   return files;
 }
 
+const TessellationCheck* tessellation_check(const std::vector<LoadedFile>& files, std::uint32_t geom) {
+  for (const LoadedFile& f : files)
+    if (geom >= f.first_geometry && geom < f.first_geometry + f.geometry_count &&
+        geom - f.first_geometry < f.cad.size() && !f.cad[geom - f.first_geometry].empty())
+      return &f.cad[geom - f.first_geometry].check;
+  return nullptr;
+}
+
 std::string solid_label(const Scene& scene, std::uint32_t id) {
   const std::string& n = scene.geometry(id).name;
   return n.empty() ? "#" + std::to_string(id) : n;

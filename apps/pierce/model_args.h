@@ -21,6 +21,9 @@ void add_model_args(CLI::App* cmd, ModelArgs& args, bool several);
 // Loads every model into the scene; CAD warnings (skipped entities, repairs) go to stderr.
 std::vector<LoadedFile> load_models(Scene& scene, const ModelArgs& args);
 
+// The check of CAD solid `geom`'s tessellation against its B-rep (cad_io.h), or null for a mesh.
+const TessellationCheck* tessellation_check(const std::vector<LoadedFile>& files, std::uint32_t geom);
+
 // "name" or "#id" when unnamed, for messages and tables.
 std::string solid_label(const Scene& scene, std::uint32_t id);
 

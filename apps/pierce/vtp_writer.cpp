@@ -4,6 +4,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "base64.h"
+
 namespace pierce::cli {
 
 namespace {
@@ -16,20 +18,6 @@ template <> const char* vtk_type<std::int32_t>() { return "Int32"; }
 template <> const char* vtk_type<std::uint32_t>() { return "UInt32"; }
 template <> const char* vtk_type<std::uint8_t>() { return "UInt8"; }
 template <> const char* vtk_type<std::int64_t>() { return "Int64"; }
-
-std::string base64(const unsigned char* p, std::size_t n) {
-  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((n + 2) / 3 * 4);
-  for (std::size_t i = 0; i < n; i += 3) {
-    const unsigned v = unsigned(p[i]) << 16 | (i + 1 < n ? unsigned(p[i + 1]) << 8 : 0u) | (i + 2 < n ? unsigned(p[i + 2]) : 0u);
-    out += k[(v >> 18) & 63];
-    out += k[(v >> 12) & 63];
-    out += i + 1 < n ? k[(v >> 6) & 63] : '=';
-    out += i + 2 < n ? k[v & 63] : '=';
-  }
-  return out;
-}
 
 // Arrays are written inline, base64-encoded: the UInt64 byte count and the data in one stream,
 // as VTK writes them. (Appended data, raw or encoded, trips the expat-based parser of Debian's

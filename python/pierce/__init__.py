@@ -21,7 +21,7 @@ __all__ = ["Scene", "Geometry", "gen", "load", "tessellation_defaults", "thickne
            "thickness", "thickness_at", "thickness_along", "THICKNESS_STATUS",
            "coplanar_overlaps", "ray_overlaps", "axis_grid_rays", "triangle_overlap_arrays", "clearance",
            "Partitions", "partitions", "Shots", "shotlines", "shotline", "SHOT_KINDS", "check_csg",
-           "classify_points", "POINT_CLASSES", "gqa", "HAS_CAD",
+           "classify_points", "POINT_CLASSES", "gqa", "HAS_CAD", "report",
            "CancelToken", "Cancelled", "InputError"]
 
 
@@ -82,7 +82,90 @@ def load(*paths, **tessellation):
     scene = Scene()
     info = _core.add_model_files(scene, [str(p) for p in paths], **tessellation)
     scene.load_info = info
+    # What pierce.report passes to the `pierce` binary, so that it reads the files alike.
+    scene.load_options = {"paths": [str(p) for p in paths], "linear_deflection": linear_deflection,
+                          "angular_deflection": angular_deflection, "fold_remesh_rounds": fold_remesh_rounds}
     return scene
+
+
+def _pierce_binary():
+    """The `pierce` program: $PIERCE_BINARY, the build tree's bin/pierce next to this package
+    (build/python/pierce -> build/bin/pierce), or `pierce` on the PATH."""
+    import os
+    import shutil
+    env = os.environ.get("PIERCE_BINARY")
+    if env:
+        return env
+    here = os.path.dirname(os.path.abspath(__file__))
+    built = os.path.join(here, os.pardir, os.pardir, "bin", "pierce")
+    if os.access(built, os.X_OK):
+        return os.path.normpath(built)
+    found = shutil.which("pierce")
+    if not found:
+        raise FileNotFoundError("pierce.report needs the `pierce` program: install Pierce, or set PIERCE_BINARY")
+    return found
+
+
+def report(scene, path, *, min_thickness=0.0, max_thickness=None, clearance=0.0, method="ray", per="vertex",
+           kernel=None, title=None, linear_deflection=None, angular_deflection=None, force=False):
+    """Writes the HTML report of `pierce report` (docs/REPORT.md) for `scene` to `path`: one
+    self-contained file with the 3D thickness map, thin and thick walls, contact / clash /
+    clearance pairs, statistics, model checks and what exactness cost.
+
+    `scene`: a Scene from pierce.load (its files are read again by the `pierce` program with the
+    same tessellation options, so CAD solids keep their B-rep), or any other Scene (its meshes are
+    written to a temporary OBJ, one object per geometry), or a list of model file paths (CAD ones
+    tessellated with linear_deflection and angular_deflection when given, as pierce.load). Raises
+    FileExistsError if `path` exists and not force, InputError for what `pierce` rejects. Returns
+    `path`."""
+    import os
+    import subprocess
+    import tempfile
+    path = str(path)
+    if os.path.exists(path) and not force:
+        raise FileExistsError(path + " exists (force=True replaces it)")
+    args = []
+    with tempfile.TemporaryDirectory(prefix="pierce_report.") as tmp:
+        options = getattr(scene, "load_options", None) if isinstance(scene, Scene) else None
+        if isinstance(scene, (list, tuple)):
+            args += [str(p) for p in scene]
+            if linear_deflection is not None:
+                args += ["--deflection", repr(float(linear_deflection))]
+            if angular_deflection is not None:
+                args += ["--angular-deflection", repr(float(angular_deflection))]
+        elif options is not None and len(scene) == sum(f["geometries"][1] for f in scene.load_info):
+            args += options["paths"]
+            args += ["--deflection", repr(options["linear_deflection"]),
+                     "--angular-deflection", repr(options["angular_deflection"]),
+                     "--fold-remesh-rounds", str(options["fold_remesh_rounds"])]
+        else:
+            obj = os.path.join(tmp, "scene.obj")
+            with open(obj, "w") as f:
+                base = 1
+                for i in range(len(scene)):
+                    g = scene[i]
+                    f.write("o %s\n" % (g.name or "#%d" % i))
+                    f.writelines("v %r %r %r\n" % (float(x), float(y), float(z)) for x, y, z in g.vertices)
+                    f.writelines("f %d %d %d\n" % (a + base, b + base, c + base) for a, b, c in g.triangles)
+                    base += len(g.vertices)
+            args.append(obj)
+        args += ["--min", repr(float(min_thickness)), "--clearance", repr(float(clearance)), "--method", method,
+                 "--per", per, "-o", path]
+        if max_thickness is not None:
+            args += ["--max", repr(float(max_thickness))]
+        if kernel is not None:
+            args += ["--kernel", kernel]
+        if title is not None:
+            args += ["--title", str(title)]
+        if force:
+            args.append("--force")
+        run = subprocess.run([_pierce_binary(), "report"] + args, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                             text=True, check=False)
+    if run.returncode == 2 or run.returncode >= 100:  # pierce's bad input, or an option it rejects (CLI11)
+        raise InputError(run.stderr.strip().splitlines()[0].replace("pierce: error: ", ""))
+    if run.returncode != 0:
+        raise RuntimeError("pierce report failed (exit %d): %s" % (run.returncode, run.stderr.strip()))
+    return path
 
 
 class Partitions:

@@ -2,7 +2,8 @@
 // STEP assembly, tests/occt/step_assembly.h: plate, two touching blocks, a clash sunk 0.5 into it) and
 // DIR/hollow.brep (hollow sphere, outer radius 1, inner 0.95), DIR/sheet.brep (the bent sheet 0.5
 // thick), DIR/folded.brep (the filleted box 10 x 8 x 6 with one triangle of its mesh folded) and
-// DIR/torus.brep (the hollow torus, wall 0.2); see tests/occt/step_assembly.h.
+// DIR/torus.brep (the hollow torus, wall 0.2), DIR/pocket_part.step (a part with pocket floors 0.6,
+// 0.8 and 1.5 thick); see tests/occt/step_assembly.h.
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
@@ -46,6 +47,7 @@ int main(int argc, char** argv) {
     tm::write_brep(tm::with_folded_triangle(tm::filleted_box(), 0.01), dir + "/folded.brep");
     tm::write_brep(tm::hollow_torus(), dir + "/torus.brep");
     tm::write_brep(tm::thin_blended_plate(), dir + "/thin_plate.brep");
+    tm::write_step_part(tm::pocket_part(), "pocket_part", dir + "/pocket_part.step");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "make_models: %s\n", e.what());
     return 1;

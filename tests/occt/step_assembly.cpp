@@ -167,6 +167,28 @@ TopoDS_Shape with_folded_triangle(const TopoDS_Shape& shape, double deflection) 
   return shape;
 }
 
+TopoDS_Shape pocket_part() {
+  TopoDS_Shape part = BRepPrimAPI_MakeBox(60, 40, 12).Shape();
+  const double top = 12;
+  part = BRepAlgoAPI_Cut(part, BRepPrimAPI_MakeBox(gp_Pnt(5, 5, 0.6), gp_Pnt(20, 15, top + 1)).Shape()).Shape();
+  part = BRepAlgoAPI_Cut(part, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(12, 28, 0.8), gp::DZ()), 5, top).Shape()).Shape();
+  part = BRepAlgoAPI_Cut(part, BRepPrimAPI_MakeBox(gp_Pnt(25, 5, 1.5), gp_Pnt(55, 35, top + 1)).Shape()).Shape();
+  return part;
+}
+
+void write_step_part(const TopoDS_Shape& shape, const std::string& name, const std::string& path) {
+  Handle(TDocStd_Document) doc;
+  XCAFApp_Application::GetApplication()->NewDocument("MDTV-XCAF", doc);
+  const Handle(XCAFDoc_ShapeTool) tool = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
+  TDataStd_Name::Set(tool->AddShape(shape, false), name.c_str());
+  STEPCAFControl_Writer writer;
+  writer.SetNameMode(true);
+  const bool transferred = writer.Transfer(doc, STEPControl_AsIs);
+  const bool written = transferred && writer.Write(path.c_str()) == IFSelect_RetDone;
+  XCAFApp_Application::GetApplication()->Close(doc);
+  if (!written) throw std::runtime_error("OpenCASCADE could not write " + path);
+}
+
 void write_brep(const TopoDS_Shape& shape, const std::string& path) {
   if (!BRepTools::Write(shape, path.c_str())) throw std::runtime_error("OpenCASCADE could not write " + path);
 }

@@ -45,6 +45,15 @@ TopoDS_Shape embossed_box();
 // upside down (a fold the loader must find); the triangulation is kept in the shape.
 TopoDS_Shape with_folded_triangle(const TopoDS_Shape& shape, double deflection);
 
+// A machined part with pocket floors, the report's CAD test model: block [0,60] x [0,40] x [0,12]
+// with pockets milled from its top: [5,20] x [5,15] down to a floor 0.6 thick, a round pocket of
+// radius 5 centred at (12, 28) down to a floor 0.8 thick, and [25,55] x [5,35] down to a floor
+// 1.5 thick.
+TopoDS_Shape pocket_part();
+
+// Writes `shape` as a STEP file of one part named `name` (XDE); throws std::runtime_error on failure.
+void write_step_part(const TopoDS_Shape& shape, const std::string& name, const std::string& path);
+
 // Writes `shape` (with its triangulation, if any) as BREP; throws std::runtime_error on failure.
 void write_brep(const TopoDS_Shape& shape, const std::string& path);
 

@@ -3,6 +3,7 @@ import FreeCADGui as Gui
 
 from .. import overlap_check
 from ..overlap_check import OverlapOptions
+from .export_report import add_export_button
 from .panel_base import PanelBase, check_box, double_spin, wrappable
 from .qt import QtWidgets
 from .view import Highlight, frame
@@ -60,6 +61,8 @@ class OverlapPanel(PanelBase):
         layout.addWidget(self.summary)
         self._highlight = Highlight()
         self._transparency = {}  # object name -> its transparency before a row was chosen
+        self.export_button = add_export_button(self, layout, lambda: (
+            self.solids_to_analyse(self.whole_document.isChecked()), dict(deflection=self.deflection.value())))
 
     def compute(self, progress, cancel):
         objects = self.solids_to_analyse(self.whole_document.isChecked())

@@ -7,6 +7,7 @@ import numpy as np
 from .. import thickness_map
 from ..locate import PierceUnavailable
 from ..thickness_map import ThicknessOptions
+from .export_report import add_export_button
 from .legend import Legend
 from .panel_base import PanelBase, check_box, double_spin
 from .qt import QtWidgets
@@ -128,6 +129,10 @@ class ThicknessPanel(PanelBase):
         self.summary.setReadOnly(True)
         self.summary.setMinimumHeight(100)
         layout.addWidget(self.summary)
+        self.export_button = add_export_button(self, layout, lambda: (self.solids_to_analyse(), dict(
+            min_thickness=self.threshold.value(), method=self.method.currentText(),
+            per="face" if self.per.currentIndex() == 0 else "vertex", deflection=self.deflection.value(),
+            angular_deflection=self.angular.value())))
 
     def set_caliper(self, on):
         import FreeCADGui
