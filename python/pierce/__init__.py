@@ -83,8 +83,7 @@ def load(*paths, **tessellation):
     info = _core.add_model_files(scene, [str(p) for p in paths], **tessellation)
     scene.load_info = info
     # What pierce.report passes to the `pierce` binary, so that it reads the files alike.
-    scene.load_options = {"paths": [str(p) for p in paths], "linear_deflection": linear_deflection,
-                          "angular_deflection": angular_deflection, "fold_remesh_rounds": fold_remesh_rounds}
+    scene.load_options = dict(_core.tessellation_defaults(), **tessellation, paths=[str(p) for p in paths])
     return scene
 
 
@@ -135,9 +134,10 @@ def report(scene, path, *, min_thickness=0.0, max_thickness=None, clearance=0.0,
                 args += ["--angular-deflection", repr(float(angular_deflection))]
         elif options is not None and len(scene) == sum(f["geometries"][1] for f in scene.load_info):
             args += options["paths"]
-            args += ["--deflection", repr(options["linear_deflection"]),
-                     "--angular-deflection", repr(options["angular_deflection"]),
-                     "--fold-remesh-rounds", str(options["fold_remesh_rounds"])]
+            args += ["--deflection", repr(float(options["linear_deflection"])),
+                     "--angular-deflection", repr(float(options["angular_deflection"])),
+                     "--fold-remesh-rounds", str(options["fold_remesh_rounds"]),
+                     "--max-edge", repr(float(options["max_edge"]))]
         else:
             obj = os.path.join(tmp, "scene.obj")
             with open(obj, "w") as f:
