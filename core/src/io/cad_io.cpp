@@ -8,6 +8,7 @@
 #endif
 
 #include <BRepBndLib.hxx>
+#include <BRepLib.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <IMeshTools_Parameters.hxx>
 #include <gp_Pnt2d.hxx>
@@ -188,6 +189,7 @@ class Collector {
       unmeshed = collect(shape, s);
     }
     check.final_deflection = deflection;
+    store_plane_pcurves(shape);
     if (unmeshed > 0) warn(name + ": " + std::to_string(unmeshed) + " faces could not be tessellated, skipped");
     if (s.triangles.empty()) {
       warn(name + ": nothing to tessellate, skipped");
@@ -213,6 +215,19 @@ class Collector {
            (check.folded > 0 ? "; " + std::to_string(check.folded) + " left, flagged (thickness status tessellation)"
                              : "; none left"));
     solids.push_back(std::move(s));
+  }
+
+  // Stores the curves on the surface of the edges of planar faces that the file left out.
+  // OpenCASCADE otherwise projects the edge's 3D curve onto the plane again on every request
+  // (BRep_Tool::CurveOnPlane): the 3D solid classifier of the exact fallback asks for them many
+  // times per call (pierce_bench_cad_refine, sheet_heatsink). The stored curve is the one the
+  // projection gives, so every later answer is the same.
+  static void store_plane_pcurves(const TopoDS_Shape& shape) {
+    for (TopExp_Explorer f(shape, TopAbs_FACE); f.More(); f.Next()) {
+      const TopoDS_Face& face = TopoDS::Face(f.Current());
+      for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next())
+        BRepLib::BuildPCurveForEdgeOnPlane(TopoDS::Edge(e.Current()), face);
+    }
   }
 
   static std::size_t count_flag(const CadSolid& s, std::uint8_t flag) {

@@ -2,6 +2,7 @@
 
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <BRepBndLib.hxx>
+#include <BRep_Tool.hxx>
 #include <ElCLib.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepTopAdaptor_FClass2d.hxx>
@@ -28,6 +29,7 @@
 #include <tbb/task_arena.h>
 
 #include "cad_faces.h"
+#include "cad_trim_grid.h"
 #include "pierce/analysis/bvh_query.h"
 #include "pierce/bvh_builder.h"
 #include "pierce/slab.h"
@@ -94,7 +96,8 @@ struct CadSurfaces::Intersectors {
 
 // BRepTopAdaptor_FClass2d::Perform is const but not safe to call from two threads at once
 // (concurrent calls from TBB workers crash), so every thread builds its own classifier of a face
-// on first use.
+// on first use. In front of them, one TrimGrid per face, shared (read-only once built), answers
+// the points away from the face's wires.
 struct CadSurfaces::Classifiers {
   struct Slot {
     bool built = false;
@@ -102,6 +105,16 @@ struct CadSurfaces::Classifiers {
   };
   using PerThread = std::vector<std::vector<Slot>>;  // [geom][face]
   tbb::enumerable_thread_specific<PerThread> per_thread;
+  struct Grid {
+    std::once_flag built;
+    TrimGrid grid;
+  };
+  std::vector<std::unique_ptr<Grid[]>> grids;  // [geom][face]
+
+  explicit Classifiers(const std::vector<CadLink>& links) : grids(links.size()) {
+    for (std::size_t g = 0; g < links.size(); ++g)
+      if (!links[g].empty()) grids[g] = std::make_unique<Grid[]>(links[g].faces->faces.size());
+  }
 
   // This thread's classifier of `face`; null where the face is unclassifiable (refined points on
   // it are then not checked against its trim).
@@ -124,6 +137,21 @@ struct CadSurfaces::Classifiers {
       }
     }
     return slot.classifier.get();
+  }
+
+  // Where (u, v) (in the face's period window) lies against the trim of `face`, as its classifier
+  // says; TopAbs_IN where the face is unclassifiable.
+  TopAbs_State state(const std::vector<CadLink>& links, std::uint32_t geom, std::uint32_t face, double u, double v) {
+    const BRepTopAdaptor_FClass2d* trim = of(links, geom, face);
+    if (!trim) return TopAbs_IN;
+    Grid& g = grids[geom][face];
+    std::call_once(g.built, [&] {
+      const CadFaces::Face& f = links[geom].faces->faces[face];
+      g.grid = TrimGrid(f.face, f.umin, f.umax, f.vmin, f.vmax, *trim);
+    });
+    const TopAbs_State known = g.grid.state(u, v);
+    if (known != TopAbs_UNKNOWN) return known;
+    return trim->Perform(gp_Pnt2d(u, v));
   }
 };
 
@@ -278,7 +306,7 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
 CadSurfaces::CadSurfaces(std::vector<CadLink> links)
     : links_(std::move(links)),
       intersectors_(std::make_unique<Intersectors>()),
-      classifiers_(std::make_unique<Classifiers>()),
+      classifiers_(std::make_unique<Classifiers>(links_)),
       hidden_(std::make_unique<HiddenFaces>(links_.size())) {
   folded_.resize(links_.size());
   for (std::size_t g = 0; g < links_.size(); ++g) {
@@ -323,6 +351,36 @@ Start start_of(const CadLink& l, std::uint32_t prim, double b1, double b2) {
 // Gauss-Newton where the Hessian is not positive definite).
 std::optional<analysis::SurfacePoint> CadSurfaces::project(std::uint32_t geom, std::uint32_t prim, double b1,
                                                            double b2, Vec3d p) const {
+  double u = 0, v = 0;
+  return foot(geom, prim, b1, b2, p, u, v);
+}
+
+std::optional<analysis::NearestFacePoint> CadSurfaces::nearest_on_faces(std::uint32_t geom,
+                                                                        std::span<const analysis::FaceStart> starts,
+                                                                        Vec3d p) const {
+  const CadLink& l = links_.at(geom);
+  std::optional<analysis::NearestFacePoint> best;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < starts.size(); ++k) {
+    const std::uint32_t face = l.face.at(starts[k].prim);
+    bool seen = false;
+    for (std::size_t j = 0; j < k && !seen; ++j) seen = l.face[starts[j].prim] == face;
+    if (seen) continue;
+    double u = 0, v = 0;
+    const std::optional<analysis::SurfacePoint> q = foot(geom, starts[k].prim, starts[k].b1, starts[k].b2, p, u, v);
+    if (!q) continue;
+    wrap_periodic(l.faces->faces[face], u, v);
+    if (classifiers_->state(links_, geom, face, u, v) == TopAbs_OUT) continue;
+    const double d = length(q->point - p);
+    if (d < best_d) best_d = d, best = analysis::NearestFacePoint{*q, k};
+  }
+  if (best && best_d <= BRep_Tool::Tolerance(l.faces->faces[l.face[starts[best->start].prim]].face))
+    best->at.point = p;  // on the face already: it keeps its coordinates
+  return best;
+}
+
+std::optional<analysis::SurfacePoint> CadSurfaces::foot(std::uint32_t geom, std::uint32_t prim, double b1, double b2,
+                                                        Vec3d p, double& u_out, double& v_out) const {
   const Start s = start_of(links_.at(geom), prim, b1, b2);
   const Geom_Surface& surf = *s.face->surface;
   double u = s.u, v = s.v;
@@ -370,6 +428,7 @@ std::optional<analysis::SurfacePoint> CadSurfaces::project(std::uint32_t geom, s
     }
     if (!converged) return std::nullopt;
   }
+  u_out = u, v_out = v;
   surf.D1(u, v, q, su, sv);
   const gp_Vec n = su.Crossed(sv) * s.face->sign;
   const double len = n.Magnitude();
@@ -423,10 +482,9 @@ std::optional<analysis::SurfaceCrossing> CadSurfaces::intersect(std::uint32_t ge
   };
   // Inside the face's trim: a crossing of the untrimmed surface beyond the face's boundary is
   // not where the ray leaves (it left through a neighbour first).
-  const BRepTopAdaptor_FClass2d* trim = classifiers_->of(links_, geom, links_[geom].face.at(prim));
   auto trim_state = [&](double uu, double vv) {
     wrap_periodic(*s.face, uu, vv);
-    return trim ? trim->Perform(gp_Pnt2d(uu, vv)) : TopAbs_IN;
+    return classifiers_->state(links_, geom, links_[geom].face.at(prim), uu, vv);
   };
   if (converged && t > 0 && in_range(*s.face, u, v, 1e-3) &&
       surf.Value(u, v).Distance(p0) <= 2 * s.size + 1e-9 * scale) {
