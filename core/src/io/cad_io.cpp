@@ -47,6 +47,7 @@
 #include <XSControl_WorkSession.hxx>
 
 #include <algorithm>
+#include <chrono>
 #include <array>
 #include <cctype>
 #include <csignal>
@@ -104,6 +105,10 @@ std::string status_text(IFSelect_ReturnStatus s) {
   }
 }
 
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 // Collects solids as meshes, with the problems met on the way.
 class Collector {
  public:
@@ -151,9 +156,16 @@ class Collector {
 
   std::vector<CadSolid> solids;
   std::vector<std::string> warnings;
+  double mesh_seconds = 0, remesh_seconds = 0;  // in mesh() in all, and meshing again there
 
  private:
   void mesh(const TopoDS_Shape& shape, const std::string& name, bool is_solid) {
+    const auto t0 = std::chrono::steady_clock::now();
+    struct Timer {
+      double& total;
+      std::chrono::steady_clock::time_point t0;
+      ~Timer() { total += seconds_since(t0); }
+    } timer{mesh_seconds, t0};
     CadSolid s;
     s.name = name;
     std::size_t unmeshed = collect(shape, s);
@@ -181,7 +193,9 @@ class Collector {
       p.InParallel = Standard_True;
       p.AdjustMinSize = Standard_True;
       p.ControlSurfaceDeflection = Standard_True;
+      const auto tm = std::chrono::steady_clock::now();
       BRepMesh_IncrementalMesh again(shape, p);
+      remesh_seconds += seconds_since(tm);
       ++check.remesh_rounds;
       check.faces_remeshed += check.faces;
       s = CadSolid{};
@@ -435,9 +449,11 @@ double auto_deflection(const std::vector<TopoDS_Shape>& shapes) {
 
 void mesh_all(const std::vector<TopoDS_Shape>& shapes, const TessellationOptions& opts, CadModel& model,
               Collector& out) {
+  const auto t0 = std::chrono::steady_clock::now();
   model.linear_deflection = opts.linear_deflection > 0 ? opts.linear_deflection : auto_deflection(shapes);
   const double angle = opts.angular_deflection_deg * std::numbers::pi / 180.0;
   for (const TopoDS_Shape& s : shapes) BRepMesh_IncrementalMesh(s, model.linear_deflection, false, angle, true);
+  model.times.mesh += seconds_since(t0);
   out.set_tessellation(model.linear_deflection, angle);
 }
 
@@ -618,6 +634,7 @@ CadModel load_cad_file(const std::string& path, const TessellationOptions& opts)
     const std::lock_guard<std::mutex> lock(load_mutex());
     const CrashToException crash_guard;
     const QuietMessenger quiet;
+    const auto t0 = std::chrono::steady_clock::now();
     guarded(path, [&] {
       switch (fmt) {
         case CadFormat::step: load_xde<STEPCAFControl_Reader>(path, "STEP", opts, model, out); break;
@@ -626,6 +643,10 @@ CadModel load_cad_file(const std::string& path, const TessellationOptions& opts)
         case CadFormat::unknown: break;
       }
     });
+    // Reading is what neither meshing nor checking took.
+    model.times.mesh += out.remesh_seconds;
+    model.times.check = out.mesh_seconds - out.remesh_seconds;
+    model.times.read = std::max(0.0, seconds_since(t0) - model.times.mesh - model.times.check);
   }
   model.solids = std::move(out.solids);
   model.warnings.insert(model.warnings.end(), out.warnings.begin(), out.warnings.end());
