@@ -91,9 +91,6 @@ void push_row(ThicknessResult& res, std::uint32_t g, std::uint32_t element, Vec3
 // Barycentrics (b1, b2) of corner k.
 std::pair<double, double> corner_bary(int k) { return k == 1 ? std::pair{1.0, 0.0} : k == 2 ? std::pair{0.0, 1.0} : std::pair{0.0, 0.0}; }
 
-// A CAD sample at mesh point `m` on triangle `prim`: projected onto the exact face when there
-// are exact surfaces (a failed projection is a tessellation artefact), flagged when it starts on
-// a folded triangle.
 // thickness_at on CAD input: the triangles within the nearest one's distance plus this fraction
 // of its longest edge name the B-rep faces searched for the point's foot. A point on face B near
 // its edge with face A may lie nearer to A's chords than to B's (B's chords are up to their
@@ -122,7 +119,10 @@ struct Candidates {
   std::vector<FaceStart> starts;
 };
 
-// `on_face`: the exact point already found (thickness_at); otherwise `m` is projected.
+// A CAD sample at mesh point `m` on triangle `prim`: projected onto the exact face when there
+// are exact surfaces (a failed projection is a tessellation artefact), flagged when it starts on
+// a folded triangle. `on_face`: the exact point already found (thickness_at); without it `m` is
+// projected.
 std::pair<Sample, CadSample> cad_sample(const ThicknessOptions& opts, std::uint32_t g, std::uint32_t out,
                                        std::uint32_t prim, double b1, double b2, Vec3d m, Vec3d mesh_inward,
                                        bool start_folded, bool closed,
