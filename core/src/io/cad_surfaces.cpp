@@ -10,7 +10,9 @@
 #include <GeomAdaptor_Surface.hxx>
 #include <IntCurvesFace_Intersector.hxx>
 #include <IntCurveSurface_TransitionOnCurve.hxx>
-#include <IntCurvesFace_ShapeIntersector.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Edge.hxx>
 #include <Standard_Failure.hxx>
 #include <gp_Lin.hxx>
 #include <gp_Pnt2d.hxx>
@@ -85,9 +87,20 @@ struct Start {
 
 // The whole-B-rep queries of exact_exit, per thread (as the classifiers below: an OpenCASCADE
 // algorithm object is not to be used by two threads at once) and per geometry, built on first use.
+//
+// The line is intersected face by face, as IntCurvesFace_ShapeIntersector does (each face's
+// IntCurvesFace_Intersector, in the shape's face order, the points merged and sorted by
+// parameter), but a face whose box the line misses is not asked: its intersector finds no point
+// on the face there. The shape intersector asks every face, and an analytic face's intersector
+// intersects the whole untrimmed surface and builds its line adaptors on every call: most of
+// the exact fallback's time on parts of many faces (pierce_bench_cad_refine, connector).
 struct CadSurfaces::Intersectors {
+  struct Face {
+    Bnd_Box box;  // the face's, widened: every point its intersector finds lies in it
+    std::unique_ptr<IntCurvesFace_Intersector> line;
+  };
   struct OfGeom {
-    IntCurvesFace_ShapeIntersector line;
+    std::vector<Face> faces;  // every face of the shape, in TopExp_Explorer order
     BRepClass3d_SolidClassifier inside;
     double tolerance = 0;
   };
@@ -272,18 +285,32 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
     auto& x = intersectors_->per_thread.local()[geom];
     if (!x) {
       x = std::make_unique<Intersectors::OfGeom>();
-      x->tolerance = 1e-9 * scale_of(l.faces->shape).size;
-      x->line.Load(l.faces->shape, x->tolerance);
+      const double size = scale_of(l.faces->shape).size;
+      x->tolerance = 1e-9 * size;
+      for (TopExp_Explorer ex(l.faces->shape, TopAbs_FACE); ex.More(); ex.Next()) {
+        const TopoDS_Face& face = TopoDS::Face(ex.Current());
+        Intersectors::Face f;
+        BRepBndLib::Add(face, f.box);  // widened by the face's, edges' and vertices' tolerances
+        double tol = BRep_Tool::Tolerance(face);
+        for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next())
+          tol = std::max(tol, BRep_Tool::Tolerance(TopoDS::Edge(e.Current())));
+        f.box.Enlarge(10 * tol + 1e-6 * size);  // points ON an edge lie within its tolerance
+        f.line = std::make_unique<IntCurvesFace_Intersector>(face, x->tolerance);
+        x->faces.push_back(std::move(f));
+      }
       x->inside.Load(l.faces->shape);
     }
     const gp_Lin line(gp_Pnt(org.x, org.y, org.z), gp_Dir(dir.x, dir.y, dir.z));
-    x->line.Perform(line, tmin, std::numeric_limits<double>::infinity());
-    if (!x->line.IsDone()) return std::nullopt;
     // Where the line crosses a face (touching one, tangent to it, is no crossing), nearest first.
     std::vector<double> crossings;
-    for (Standard_Integer i = 1; i <= x->line.NbPnt(); ++i)
-      if (x->line.Transition(i) != IntCurveSurface_Tangent && x->line.WParameter(i) > tmin)
-        crossings.push_back(x->line.WParameter(i));
+    for (Intersectors::Face& f : x->faces) {
+      if (f.box.IsOut(line)) continue;
+      f.line->Perform(line, tmin, std::numeric_limits<double>::infinity());
+      if (!f.line->IsDone()) return std::nullopt;
+      for (Standard_Integer i = 1; i <= f.line->NbPnt(); ++i)
+        if (f.line->Transition(i) != IntCurveSurface_Tangent && f.line->WParameter(i) > tmin)
+          crossings.push_back(f.line->WParameter(i));
+    }
     std::sort(crossings.begin(), crossings.end());
     // The ray leaves at the first crossing beyond which it is outside the solid, settled by
     // classifying the line between it and the next crossing: OpenCASCADE's transitions cannot be
