@@ -24,6 +24,10 @@
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Solid.hxx>
 #include <STEPCAFControl_Writer.hxx>
+#include <STEPControl_Writer.hxx>
+#include <TopExp.hxx>
+#include <TopoDS_Vertex.hxx>
+#include <TopTools_ListOfShape.hxx>
 #include <TDataStd_Name.hxx>
 #include <TDocStd_Document.hxx>
 #include <XCAFApp_Application.hxx>
@@ -149,6 +153,111 @@ TopoDS_Shape lofted_solid() {
   loft.Build();
   if (!loft.IsDone()) throw std::runtime_error("lofted_solid: loft failed");
   return loft.Shape();
+}
+
+namespace {
+
+// A slot tool: the box [lo, lo + size] with its four edges along `axis` (0, 1, 2: x, y, z)
+// rounded with `radius`, so its cut leaves a slot with rounded corners.
+TopoDS_Shape rounded_slot(gp_Pnt lo, double dx, double dy, double dz, int axis, double radius) {
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(lo, dx, dy, dz).Shape();
+  BRepFilletAPI_MakeFillet f(box);
+  for (TopExp_Explorer ex(box, TopAbs_EDGE); ex.More(); ex.Next()) {
+    const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
+    const gp_Pnt a = BRep_Tool::Pnt(TopExp::FirstVertex(e)), b = BRep_Tool::Pnt(TopExp::LastVertex(e));
+    const double d[3] = {std::abs(a.X() - b.X()), std::abs(a.Y() - b.Y()), std::abs(a.Z() - b.Z())};
+    if (d[axis] > 0 && d[(axis + 1) % 3] == 0 && d[(axis + 2) % 3] == 0) f.Add(radius, e);
+  }
+  f.Build();
+  if (!f.IsDone()) throw std::runtime_error("rounded_slot: fillet failed");
+  return f.Shape();
+}
+
+// `shape` minus every tool, in one boolean operation.
+TopoDS_Shape cut_all(const TopoDS_Shape& shape, const TopTools_ListOfShape& tools, const char* model) {
+  BRepAlgoAPI_Cut cut;
+  TopTools_ListOfShape args;
+  args.Append(shape);
+  cut.SetArguments(args);
+  cut.SetTools(tools);
+  cut.Build();
+  if (!cut.IsDone()) throw std::runtime_error(std::string(model) + ": cut failed");
+  return cut.Shape();
+}
+
+}  // namespace
+
+TopoDS_Shape sheet_heatsink() {
+  // The U profile in the xz plane (sheet 1 thick, bends about (2, 2) and (28, 2), inner radius 1,
+  // outer 2), extruded 40 along y.
+  auto p = [](double x, double z) { return gp_Pnt(x, 0, z); };
+  const double r2 = std::sqrt(0.5);
+  BRepBuilderAPI_MakeWire w;
+  auto seg = [&](gp_Pnt a, gp_Pnt b) { w.Add(BRepBuilderAPI_MakeEdge(GC_MakeSegment(a, b).Value()).Edge()); };
+  auto arc = [&](gp_Pnt a, gp_Pnt m, gp_Pnt b) { w.Add(BRepBuilderAPI_MakeEdge(GC_MakeArcOfCircle(a, m, b).Value()).Edge()); };
+  seg(p(2, 0), p(28, 0));
+  arc(p(28, 0), p(28 + 2 * r2, 2 - 2 * r2), p(30, 2));
+  seg(p(30, 2), p(30, 20));
+  seg(p(30, 20), p(29, 20));
+  seg(p(29, 20), p(29, 2));
+  arc(p(29, 2), p(28 + r2, 2 - r2), p(28, 1));
+  seg(p(28, 1), p(2, 1));
+  arc(p(2, 1), p(2 - r2, 2 - r2), p(1, 2));
+  seg(p(1, 2), p(1, 20));
+  seg(p(1, 20), p(0, 20));
+  seg(p(0, 20), p(0, 2));
+  arc(p(0, 2), p(2 - 2 * r2, 2 - 2 * r2), p(2, 0));
+  if (!w.IsDone()) throw std::runtime_error("sheet_heatsink: profile is not a wire");
+  const TopoDS_Face face = BRepBuilderAPI_MakeFace(w.Wire(), true).Face();
+  const TopoDS_Shape sheet = BRepPrimAPI_MakePrism(face, gp_Vec(0, 40, 0)).Shape();
+  // Slots 1.2 wide, 3 apart along y: 12 across the base (20 long in x), 12 in each leg (10 high).
+  TopTools_ListOfShape slots;
+  const int per_wall = kHeatsinkSlots / 3;
+  for (int i = 0; i < per_wall; ++i) {
+    const double y = 1.9 + 3.0 * i;
+    slots.Append(rounded_slot(gp_Pnt(5, y, -1), 20, 1.2, 3, 2, 0.5));
+    slots.Append(rounded_slot(gp_Pnt(-1, y, 6), 3, 1.2, 10, 0, 0.5));
+    slots.Append(rounded_slot(gp_Pnt(28, y, 6), 3, 1.2, 10, 0, 0.5));
+  }
+  return cut_all(sheet, slots, "sheet_heatsink");
+}
+
+void write_connector_assembly(const std::string& path) {
+  // Two rows of pins, 2.54 apart in x and 3 apart in y, in cavities 1 x 1 through the housing.
+  const int per_row = kConnectorPins / 2;
+  TopoDS_Shape housing = with_all_edges_filleted(BRepPrimAPI_MakeBox(2.54 * per_row + 1.5, 8, 10).Shape(), 0.5, "connector");
+  TopTools_ListOfShape cavities;
+  auto pin_x = [](int i) { return 2.0 + 2.54 * i; };
+  for (int i = 0; i < per_row; ++i)
+    for (double y : {2.5, 5.5}) cavities.Append(BRepPrimAPI_MakeBox(gp_Pnt(pin_x(i) - 0.5, y - 0.5, -1), 1, 1, 12).Shape());
+  housing = cut_all(housing, cavities, "connector");
+  const TopoDS_Shape pin = with_all_edges_filleted(BRepPrimAPI_MakeBox(0.64, 0.64, 14).Shape(), 0.1, "connector pin");
+
+  Handle(TDocStd_Document) doc;
+  XCAFApp_Application::GetApplication()->NewDocument("MDTV-XCAF", doc);
+  const Handle(XCAFDoc_ShapeTool) tool = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
+  const TDF_Label assy = tool->NewShape();
+  TDataStd_Name::Set(assy, "connector");
+  const TDF_Label h = tool->AddShape(housing, false);
+  TDataStd_Name::Set(h, "housing");
+  const TDF_Label p = tool->AddShape(pin, false);
+  TDataStd_Name::Set(p, "pin");
+  tool->AddComponent(assy, h, TopLoc_Location());
+  for (int i = 0; i < per_row; ++i)
+    for (double y : {2.5, 5.5}) tool->AddComponent(assy, p, at(pin_x(i) - 0.32, y - 0.32, -3));
+  tool->UpdateAssemblies();
+  STEPCAFControl_Writer writer;
+  writer.SetNameMode(true);
+  const bool transferred = writer.Transfer(doc, STEPControl_AsIs);
+  const bool written = transferred && writer.Write(path.c_str()) == IFSelect_RetDone;
+  XCAFApp_Application::GetApplication()->Close(doc);
+  if (!written) throw std::runtime_error("OpenCASCADE could not write " + path);
+}
+
+void write_step(const TopoDS_Shape& shape, const std::string& path) {
+  STEPControl_Writer writer;
+  if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone || writer.Write(path.c_str()) != IFSelect_RetDone)
+    throw std::runtime_error("OpenCASCADE could not write " + path);
 }
 
 TopoDS_Shape with_folded_triangle(const TopoDS_Shape& shape, double deflection) {

@@ -24,6 +24,17 @@
 //                   top, as KiCad packages carry their lettering: a dot of radius 1 centred at
 //                   (3, 4) and a bar [6,8] x [3.5,4.5]. Vertex samples on the marking's rims run
 //                   down its walls.
+//
+// Realistic parts for the CAD benchmark (pierce_bench_cad_refine), as STEP files:
+//   sheet_heatsink  a TO-263-like sheet heatsink: a 1 mm sheet bent into a U (two bends of inner
+//                   radius 1), 40 wide, its base 30 long and its legs 20 high, with kHeatsinkSlots
+//                   slots across the legs and the base, every slot's four corners rounded with
+//                   radius 0.5 (4 cylindrical blends per slot);
+//   connector       an XDE assembly "connector" of a housing (box 42.14 x 8 x 10 with every edge
+//                   filleted, radius 0.5, and kConnectorPins cavities 1 x 1 through it, in two
+//                   rows 3 apart, 2.54 apart along each row) and kConnectorPins instances of one
+//                   pin (0.64 x 0.64 x 14 with every edge filleted, radius 0.1) standing free in
+//                   the cavities.
 #include <TopoDS_Shape.hxx>
 
 #include <string>
@@ -40,6 +51,14 @@ TopoDS_Shape thin_blended_plate();
 TopoDS_Shape lofted_solid();
 inline constexpr double kEmbossHeight = 0.002;
 TopoDS_Shape embossed_box();
+
+inline constexpr int kHeatsinkSlots = 36;
+TopoDS_Shape sheet_heatsink();
+inline constexpr int kConnectorPins = 32;
+// Throws std::runtime_error when OpenCASCADE cannot write `path`.
+void write_connector_assembly(const std::string& path);
+// Writes `shape` as a one-part STEP file; throws std::runtime_error on failure.
+void write_step(const TopoDS_Shape& shape, const std::string& path);
 
 // `shape` meshed with `deflection` and one triangle of its most finely meshed face turned
 // upside down (a fold the loader must find); the triangulation is kept in the shape.

@@ -91,19 +91,49 @@ void push_row(ThicknessResult& res, std::uint32_t g, std::uint32_t element, Vec3
 // Barycentrics (b1, b2) of corner k.
 std::pair<double, double> corner_bary(int k) { return k == 1 ? std::pair{1.0, 0.0} : k == 2 ? std::pair{0.0, 1.0} : std::pair{0.0, 0.0}; }
 
+// thickness_at on CAD input: the triangles within the nearest one's distance plus this fraction
+// of its longest edge name the B-rep faces searched for the point's foot. A point on face B near
+// its edge with face A may lie nearer to A's chords than to B's (B's chords are up to their
+// sagitta away, a few hundredths of a chord at the default angular deflection).
+constexpr double kCandidateReach = 0.25;
+
+// Barycentrics (b1, b2) of point `p` (on the triangle's plane) on triangle `t`; its centre for a
+// degenerate triangle.
+std::pair<double, double> barycentrics(const Geometry& geo, std::uint32_t t, Vec3d p) {
+  const Tri& tri = geo.triangles[t];
+  const Vec3d a = geo.vertices[tri[0]], e1 = geo.vertices[tri[1]] - a, e2 = geo.vertices[tri[2]] - a;
+  const Vec3d d = p - a;
+  const double d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2), det = d11 * d22 - d12 * d12;
+  if (!(det > 0)) return {1.0 / 3.0, 1.0 / 3.0};
+  return {(d22 * dot(d, e1) - d12 * dot(d, e2)) / det, (d11 * dot(d, e2) - d12 * dot(d, e1)) / det};
+}
+
+// Per thread, the candidate triangles of a point (reused from point to point).
+struct Candidates {
+  struct Near {
+    double d;
+    std::uint32_t prim;
+    Vec3d point;  // the nearest point of the triangle
+  };
+  std::vector<Near> near;
+  std::vector<FaceStart> starts;
+};
+
 // A CAD sample at mesh point `m` on triangle `prim`: projected onto the exact face when there
 // are exact surfaces (a failed projection is a tessellation artefact), flagged when it starts on
-// a folded triangle.
+// a folded triangle. `on_face`: the exact point already found (thickness_at); without it `m` is
+// projected.
 std::pair<Sample, CadSample> cad_sample(const ThicknessOptions& opts, std::uint32_t g, std::uint32_t out,
                                        std::uint32_t prim, double b1, double b2, Vec3d m, Vec3d mesh_inward,
-                                       bool start_folded, bool closed) {
+                                       bool start_folded, bool closed,
+                                       const std::optional<SurfacePoint>* on_face = nullptr) {
   Sample s{g, out};
   CadSample c{m, mesh_inward, m};
   c.closed = closed;
   if (opts.exact && opts.exact->covers(g)) {
     c.exact = true;
     c.face = opts.exact->face_of(g, prim);
-    if (const auto p = opts.exact->project(g, prim, b1, b2, m)) {
+    if (const auto p = on_face ? *on_face : opts.exact->project(g, prim, b1, b2, m)) {
       c.point = p->point;
       c.inward = p->normal * -1.0;
       if (p->normal == Vec3d{}) s.preset = ThicknessStatus::no_normal;  // a singular point
@@ -359,15 +389,51 @@ SampleSet build_point_samples(const Scene& scene, const ThicknessOptions& opts, 
   std::vector<CadSample> cads(n);  // of the CAD points
   std::vector<std::uint8_t> has_sample(n, 0);
   tbb::enumerable_thread_specific<NodeStack<double>> stacks;
+  tbb::enumerable_thread_specific<Candidates> candidates;
   parallel_for_items(n, 64, stacks, {}, [&](NodeStack<double>& stack, std::size_t i) {
     const std::uint32_t g = solids[i];
     const Geometry& geo = scene.geometry(g);
     const ClosestPoint cp =
         closest_point(bvh[bvh_of[g]], points[i], std::numeric_limits<double>::infinity(), {}, stack);
     if (!cp.found()) return;
-    const std::uint32_t t = cp.prim;
+    std::uint32_t t = cp.prim;
+    Vec3d on_mesh = cp.point;
+    // CAD: the point goes onto the nearest B-rep face directly (a point on the B-rep stays where
+    // it is); the triangles near it only name the faces to search, each from its nearest one.
+    std::optional<SurfacePoint> on_face;
+    if (opts.exact && opts.exact->covers(g)) {
+      const double d = std::sqrt(cp.dist2);
+      const Tri& nt = geo.triangles[t];
+      const double longest = std::max({length(geo.vertices[nt[1]] - geo.vertices[nt[0]]),
+                                       length(geo.vertices[nt[2]] - geo.vertices[nt[1]]),
+                                       length(geo.vertices[nt[0]] - geo.vertices[nt[2]])});
+      const double reach = d + kCandidateReach * longest;
+      Candidates& cand = candidates.local();
+      cand.near.clear();
+      const BBoxd box{points[i] - Vec3d{reach, reach, reach}, points[i] + Vec3d{reach, reach, reach}};
+      for_each_overlapping(bvh[bvh_of[g]], box, stack, [&](const Triangle<double>& tri) {
+        const Vec3d q = closest_point_on_triangle(points[i], tri.v0, tri.v1, tri.v2);
+        const double dq = length(q - points[i]);
+        if (dq <= reach) cand.near.push_back({dq, tri.prim, q});
+      });
+      // Nearest first, the nearest triangle of all leading (ties: lowest id, as closest_point).
+      std::sort(cand.near.begin(), cand.near.end(), [&](const auto& a, const auto& b) {
+        if ((a.prim == t) != (b.prim == t)) return a.prim == t;
+        return a.d < b.d || (a.d == b.d && a.prim < b.prim);
+      });
+      cand.starts.clear();
+      for (const auto& c : cand.near) {
+        const auto [b1, b2] = barycentrics(geo, c.prim, c.point);
+        cand.starts.push_back({c.prim, b1, b2});
+      }
+      if (const auto near = opts.exact->nearest_on_faces(g, cand.starts, points[i])) {
+        t = cand.near[near->start].prim;
+        on_mesh = cand.near[near->start].point;
+        on_face = near->at;
+      }
+    }
     res.element[i] = t;
-    res.point[i] = cp.point;
+    res.point[i] = on_mesh;
     Vec3d given = normals.empty() ? Vec3d{} : normals[i];
     const double gl = length(given);
     given = gl > 0 && std::isfinite(gl) ? given * (1.0 / gl) : Vec3d{};
@@ -376,18 +442,12 @@ SampleSet build_point_samples(const Scene& scene, const ThicknessOptions& opts, 
     if (mesh_n == Vec3d{} && !(opts.exact && opts.exact->covers(g))) return;
     res.status[i] = ThicknessStatus::ok;
     res.normal[i] = mesh_n;
-    // Barycentrics of the closest point on its triangle.
-    const Tri& tri = geo.triangles[t];
-    const Vec3d a = geo.vertices[tri[0]], e1 = geo.vertices[tri[1]] - a, e2 = geo.vertices[tri[2]] - a;
-    const Vec3d d = cp.point - a;
-    const double d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2), det = d11 * d22 - d12 * d12;
-    double b1 = 1.0 / 3.0, b2 = 1.0 / 3.0;
-    if (det > 0) b1 = (d22 * dot(d, e1) - d12 * dot(d, e2)) / det, b2 = (d11 * dot(d, e2) - d12 * dot(d, e1)) / det;
+    const auto [b1, b2] = barycentrics(geo, t, on_mesh);
     Sample s{g, std::uint32_t(i)};
     if (is_cad(opts, g)) {
       const std::span<const std::uint8_t> folded = folded_flags(opts, g);
-      auto [cs, at] = cad_sample(opts, g, std::uint32_t(i), t, b1, b2, cp.point, mesh_n * -1.0,
-                                 !folded.empty() && folded[t] != 0, closed[g] != 0);
+      auto [cs, at] = cad_sample(opts, g, std::uint32_t(i), t, b1, b2, on_mesh, mesh_n * -1.0,
+                                 !folded.empty() && folded[t] != 0, closed[g] != 0, on_face ? &on_face : nullptr);
       if (given != Vec3d{}) at.inward = given * -1.0;
       if (cs.preset == ThicknessStatus::ok && at.inward == Vec3d{}) cs.preset = ThicknessStatus::no_normal;
       s = cs;

@@ -8,6 +8,7 @@
 #endif
 
 #include <BRepBndLib.hxx>
+#include <BRepLib.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <IMeshTools_Parameters.hxx>
 #include <gp_Pnt2d.hxx>
@@ -46,6 +47,7 @@
 #include <XSControl_WorkSession.hxx>
 
 #include <algorithm>
+#include <chrono>
 #include <array>
 #include <cctype>
 #include <csignal>
@@ -103,6 +105,10 @@ std::string status_text(IFSelect_ReturnStatus s) {
   }
 }
 
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 // Collects solids as meshes, with the problems met on the way.
 class Collector {
  public:
@@ -150,9 +156,16 @@ class Collector {
 
   std::vector<CadSolid> solids;
   std::vector<std::string> warnings;
+  double mesh_seconds = 0, remesh_seconds = 0;  // in mesh() in all, and meshing again there
 
  private:
   void mesh(const TopoDS_Shape& shape, const std::string& name, bool is_solid) {
+    const auto t0 = std::chrono::steady_clock::now();
+    struct Timer {
+      double& total;
+      std::chrono::steady_clock::time_point t0;
+      ~Timer() { total += seconds_since(t0); }
+    } timer{mesh_seconds, t0};
     CadSolid s;
     s.name = name;
     std::size_t unmeshed = collect(shape, s);
@@ -180,7 +193,9 @@ class Collector {
       p.InParallel = Standard_True;
       p.AdjustMinSize = Standard_True;
       p.ControlSurfaceDeflection = Standard_True;
+      const auto tm = std::chrono::steady_clock::now();
       BRepMesh_IncrementalMesh again(shape, p);
+      remesh_seconds += seconds_since(tm);
       ++check.remesh_rounds;
       check.faces_remeshed += check.faces;
       s = CadSolid{};
@@ -188,6 +203,7 @@ class Collector {
       unmeshed = collect(shape, s);
     }
     check.final_deflection = deflection;
+    store_plane_pcurves(shape);
     if (unmeshed > 0) warn(name + ": " + std::to_string(unmeshed) + " faces could not be tessellated, skipped");
     if (s.triangles.empty()) {
       warn(name + ": nothing to tessellate, skipped");
@@ -213,6 +229,19 @@ class Collector {
            (check.folded > 0 ? "; " + std::to_string(check.folded) + " left, flagged (thickness status tessellation)"
                              : "; none left"));
     solids.push_back(std::move(s));
+  }
+
+  // Stores the curves on the surface of the edges of planar faces that the file left out.
+  // OpenCASCADE otherwise projects the edge's 3D curve onto the plane again on every request
+  // (BRep_Tool::CurveOnPlane): the 3D solid classifier of the exact fallback asks for them many
+  // times per call (pierce_bench_cad_refine, sheet_heatsink). The stored curve is the one the
+  // projection gives, so every later answer is the same.
+  static void store_plane_pcurves(const TopoDS_Shape& shape) {
+    for (TopExp_Explorer f(shape, TopAbs_FACE); f.More(); f.Next()) {
+      const TopoDS_Face& face = TopoDS::Face(f.Current());
+      for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next())
+        BRepLib::BuildPCurveForEdgeOnPlane(TopoDS::Edge(e.Current()), face);
+    }
   }
 
   static std::size_t count_flag(const CadSolid& s, std::uint8_t flag) {
@@ -420,9 +449,11 @@ double auto_deflection(const std::vector<TopoDS_Shape>& shapes) {
 
 void mesh_all(const std::vector<TopoDS_Shape>& shapes, const TessellationOptions& opts, CadModel& model,
               Collector& out) {
+  const auto t0 = std::chrono::steady_clock::now();
   model.linear_deflection = opts.linear_deflection > 0 ? opts.linear_deflection : auto_deflection(shapes);
   const double angle = opts.angular_deflection_deg * std::numbers::pi / 180.0;
   for (const TopoDS_Shape& s : shapes) BRepMesh_IncrementalMesh(s, model.linear_deflection, false, angle, true);
+  model.times.mesh += seconds_since(t0);
   out.set_tessellation(model.linear_deflection, angle);
 }
 
@@ -603,6 +634,7 @@ CadModel load_cad_file(const std::string& path, const TessellationOptions& opts)
     const std::lock_guard<std::mutex> lock(load_mutex());
     const CrashToException crash_guard;
     const QuietMessenger quiet;
+    const auto t0 = std::chrono::steady_clock::now();
     guarded(path, [&] {
       switch (fmt) {
         case CadFormat::step: load_xde<STEPCAFControl_Reader>(path, "STEP", opts, model, out); break;
@@ -611,6 +643,10 @@ CadModel load_cad_file(const std::string& path, const TessellationOptions& opts)
         case CadFormat::unknown: break;
       }
     });
+    // Reading is what neither meshing nor checking took.
+    model.times.mesh += out.remesh_seconds;
+    model.times.check = out.mesh_seconds - out.remesh_seconds;
+    model.times.read = std::max(0.0, seconds_since(t0) - model.times.mesh - model.times.check);
   }
   model.solids = std::move(out.solids);
   model.warnings.insert(model.warnings.end(), out.warnings.begin(), out.warnings.end());

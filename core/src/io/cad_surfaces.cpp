@@ -2,6 +2,7 @@
 
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <BRepBndLib.hxx>
+#include <BRep_Tool.hxx>
 #include <ElCLib.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepTopAdaptor_FClass2d.hxx>
@@ -9,7 +10,9 @@
 #include <GeomAdaptor_Surface.hxx>
 #include <IntCurvesFace_Intersector.hxx>
 #include <IntCurveSurface_TransitionOnCurve.hxx>
-#include <IntCurvesFace_ShapeIntersector.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Edge.hxx>
 #include <Standard_Failure.hxx>
 #include <gp_Lin.hxx>
 #include <gp_Pnt2d.hxx>
@@ -28,6 +31,7 @@
 #include <tbb/task_arena.h>
 
 #include "cad_faces.h"
+#include "cad_trim_grid.h"
 #include "pierce/analysis/bvh_query.h"
 #include "pierce/bvh_builder.h"
 #include "pierce/slab.h"
@@ -83,9 +87,20 @@ struct Start {
 
 // The whole-B-rep queries of exact_exit, per thread (as the classifiers below: an OpenCASCADE
 // algorithm object is not to be used by two threads at once) and per geometry, built on first use.
+//
+// The line is intersected face by face, as IntCurvesFace_ShapeIntersector does (each face's
+// IntCurvesFace_Intersector, in the shape's face order, the points merged and sorted by
+// parameter), but a face whose box the line misses is not asked: its intersector finds no point
+// on the face there. The shape intersector asks every face, and an analytic face's intersector
+// intersects the whole untrimmed surface and builds its line adaptors on every call: most of
+// the exact fallback's time on parts of many faces (pierce_bench_cad_refine, connector).
 struct CadSurfaces::Intersectors {
+  struct Face {
+    Bnd_Box box;  // the face's, widened: every point its intersector finds lies in it
+    std::unique_ptr<IntCurvesFace_Intersector> line;
+  };
   struct OfGeom {
-    IntCurvesFace_ShapeIntersector line;
+    std::vector<Face> faces;  // every face of the shape, in TopExp_Explorer order
     BRepClass3d_SolidClassifier inside;
     double tolerance = 0;
   };
@@ -94,7 +109,8 @@ struct CadSurfaces::Intersectors {
 
 // BRepTopAdaptor_FClass2d::Perform is const but not safe to call from two threads at once
 // (concurrent calls from TBB workers crash), so every thread builds its own classifier of a face
-// on first use.
+// on first use. In front of them, one TrimGrid per face, shared (read-only once built), answers
+// the points away from the face's wires.
 struct CadSurfaces::Classifiers {
   struct Slot {
     bool built = false;
@@ -102,6 +118,16 @@ struct CadSurfaces::Classifiers {
   };
   using PerThread = std::vector<std::vector<Slot>>;  // [geom][face]
   tbb::enumerable_thread_specific<PerThread> per_thread;
+  struct Grid {
+    std::once_flag built;
+    TrimGrid grid;
+  };
+  std::vector<std::unique_ptr<Grid[]>> grids;  // [geom][face]
+
+  explicit Classifiers(const std::vector<CadLink>& links) : grids(links.size()) {
+    for (std::size_t g = 0; g < links.size(); ++g)
+      if (!links[g].empty()) grids[g] = std::make_unique<Grid[]>(links[g].faces->faces.size());
+  }
 
   // This thread's classifier of `face`; null where the face is unclassifiable (refined points on
   // it are then not checked against its trim).
@@ -124,6 +150,21 @@ struct CadSurfaces::Classifiers {
       }
     }
     return slot.classifier.get();
+  }
+
+  // Where (u, v) (in the face's period window) lies against the trim of `face`, as its classifier
+  // says; TopAbs_IN where the face is unclassifiable.
+  TopAbs_State state(const std::vector<CadLink>& links, std::uint32_t geom, std::uint32_t face, double u, double v) {
+    const BRepTopAdaptor_FClass2d* trim = of(links, geom, face);
+    if (!trim) return TopAbs_IN;
+    Grid& g = grids[geom][face];
+    std::call_once(g.built, [&] {
+      const CadFaces::Face& f = links[geom].faces->faces[face];
+      g.grid = TrimGrid(f.face, f.umin, f.umax, f.vmin, f.vmax, *trim);
+    });
+    const TopAbs_State known = g.grid.state(u, v);
+    if (known != TopAbs_UNKNOWN) return known;
+    return trim->Perform(gp_Pnt2d(u, v));
   }
 };
 
@@ -244,18 +285,32 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
     auto& x = intersectors_->per_thread.local()[geom];
     if (!x) {
       x = std::make_unique<Intersectors::OfGeom>();
-      x->tolerance = 1e-9 * scale_of(l.faces->shape).size;
-      x->line.Load(l.faces->shape, x->tolerance);
+      const double size = scale_of(l.faces->shape).size;
+      x->tolerance = 1e-9 * size;
+      for (TopExp_Explorer ex(l.faces->shape, TopAbs_FACE); ex.More(); ex.Next()) {
+        const TopoDS_Face& face = TopoDS::Face(ex.Current());
+        Intersectors::Face f;
+        BRepBndLib::Add(face, f.box);  // widened by the face's, edges' and vertices' tolerances
+        double tol = BRep_Tool::Tolerance(face);
+        for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next())
+          tol = std::max(tol, BRep_Tool::Tolerance(TopoDS::Edge(e.Current())));
+        f.box.Enlarge(10 * tol + 1e-6 * size);  // points ON an edge lie within its tolerance
+        f.line = std::make_unique<IntCurvesFace_Intersector>(face, x->tolerance);
+        x->faces.push_back(std::move(f));
+      }
       x->inside.Load(l.faces->shape);
     }
     const gp_Lin line(gp_Pnt(org.x, org.y, org.z), gp_Dir(dir.x, dir.y, dir.z));
-    x->line.Perform(line, tmin, std::numeric_limits<double>::infinity());
-    if (!x->line.IsDone()) return std::nullopt;
     // Where the line crosses a face (touching one, tangent to it, is no crossing), nearest first.
     std::vector<double> crossings;
-    for (Standard_Integer i = 1; i <= x->line.NbPnt(); ++i)
-      if (x->line.Transition(i) != IntCurveSurface_Tangent && x->line.WParameter(i) > tmin)
-        crossings.push_back(x->line.WParameter(i));
+    for (Intersectors::Face& f : x->faces) {
+      if (f.box.IsOut(line)) continue;
+      f.line->Perform(line, tmin, std::numeric_limits<double>::infinity());
+      if (!f.line->IsDone()) return std::nullopt;
+      for (Standard_Integer i = 1; i <= f.line->NbPnt(); ++i)
+        if (f.line->Transition(i) != IntCurveSurface_Tangent && f.line->WParameter(i) > tmin)
+          crossings.push_back(f.line->WParameter(i));
+    }
     std::sort(crossings.begin(), crossings.end());
     // The ray leaves at the first crossing beyond which it is outside the solid, settled by
     // classifying the line between it and the next crossing: OpenCASCADE's transitions cannot be
@@ -278,7 +333,7 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
 CadSurfaces::CadSurfaces(std::vector<CadLink> links)
     : links_(std::move(links)),
       intersectors_(std::make_unique<Intersectors>()),
-      classifiers_(std::make_unique<Classifiers>()),
+      classifiers_(std::make_unique<Classifiers>(links_)),
       hidden_(std::make_unique<HiddenFaces>(links_.size())) {
   folded_.resize(links_.size());
   for (std::size_t g = 0; g < links_.size(); ++g) {
@@ -323,6 +378,36 @@ Start start_of(const CadLink& l, std::uint32_t prim, double b1, double b2) {
 // Gauss-Newton where the Hessian is not positive definite).
 std::optional<analysis::SurfacePoint> CadSurfaces::project(std::uint32_t geom, std::uint32_t prim, double b1,
                                                            double b2, Vec3d p) const {
+  double u = 0, v = 0;
+  return foot(geom, prim, b1, b2, p, u, v);
+}
+
+std::optional<analysis::NearestFacePoint> CadSurfaces::nearest_on_faces(std::uint32_t geom,
+                                                                        std::span<const analysis::FaceStart> starts,
+                                                                        Vec3d p) const {
+  const CadLink& l = links_.at(geom);
+  std::optional<analysis::NearestFacePoint> best;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < starts.size(); ++k) {
+    const std::uint32_t face = l.face.at(starts[k].prim);
+    bool seen = false;
+    for (std::size_t j = 0; j < k && !seen; ++j) seen = l.face[starts[j].prim] == face;
+    if (seen) continue;
+    double u = 0, v = 0;
+    const std::optional<analysis::SurfacePoint> q = foot(geom, starts[k].prim, starts[k].b1, starts[k].b2, p, u, v);
+    if (!q) continue;
+    wrap_periodic(l.faces->faces[face], u, v);
+    if (classifiers_->state(links_, geom, face, u, v) == TopAbs_OUT) continue;
+    const double d = length(q->point - p);
+    if (d < best_d) best_d = d, best = analysis::NearestFacePoint{*q, k};
+  }
+  if (best && best_d <= BRep_Tool::Tolerance(l.faces->faces[l.face[starts[best->start].prim]].face))
+    best->at.point = p;  // on the face already: it keeps its coordinates
+  return best;
+}
+
+std::optional<analysis::SurfacePoint> CadSurfaces::foot(std::uint32_t geom, std::uint32_t prim, double b1, double b2,
+                                                        Vec3d p, double& u_out, double& v_out) const {
   const Start s = start_of(links_.at(geom), prim, b1, b2);
   const Geom_Surface& surf = *s.face->surface;
   double u = s.u, v = s.v;
@@ -370,6 +455,7 @@ std::optional<analysis::SurfacePoint> CadSurfaces::project(std::uint32_t geom, s
     }
     if (!converged) return std::nullopt;
   }
+  u_out = u, v_out = v;
   surf.D1(u, v, q, su, sv);
   const gp_Vec n = su.Crossed(sv) * s.face->sign;
   const double len = n.Magnitude();
@@ -423,10 +509,9 @@ std::optional<analysis::SurfaceCrossing> CadSurfaces::intersect(std::uint32_t ge
   };
   // Inside the face's trim: a crossing of the untrimmed surface beyond the face's boundary is
   // not where the ray leaves (it left through a neighbour first).
-  const BRepTopAdaptor_FClass2d* trim = classifiers_->of(links_, geom, links_[geom].face.at(prim));
   auto trim_state = [&](double uu, double vv) {
     wrap_periodic(*s.face, uu, vv);
-    return trim ? trim->Perform(gp_Pnt2d(uu, vv)) : TopAbs_IN;
+    return classifiers_->state(links_, geom, links_[geom].face.at(prim), uu, vv);
   };
   if (converged && t > 0 && in_range(*s.face, u, v, 1e-3) &&
       surf.Value(u, v).Distance(p0) <= 2 * s.size + 1e-9 * scale) {

@@ -24,6 +24,7 @@ std::vector<LoadedFile> add_any_model(Scene& scene, const std::vector<std::strin
       }
       f.units = m.units;
       f.linear_deflection = m.linear_deflection;
+      f.cad_times = m.times;
       f.warnings = std::move(m.warnings);
     } else {
       std::string ext = std::filesystem::path(path).extension().string();

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <vector>
 
 #include "pierce/vec3.h"
 
@@ -22,6 +23,18 @@ struct SurfaceCrossing {
   // On the face's boundary (a B-rep edge): whether the line leaves the solid there depends on
   // the neighbouring faces too.
   bool on_boundary = false;
+};
+
+// Where a search for the nearest face point starts: triangle `prim` at barycentrics (b1, b2) of
+// its corners 1 and 2.
+struct FaceStart {
+  std::uint32_t prim = 0;
+  double b1 = 0, b2 = 0;
+};
+
+struct NearestFacePoint {
+  SurfacePoint at;
+  std::size_t start = 0;  // the index in the starts of the face it lies on
 };
 
 // Every call is const and may run on many threads at once.
@@ -41,6 +54,13 @@ class ExactSurfaces {
   // nullopt when no foot point is found.
   virtual std::optional<SurfacePoint> project(std::uint32_t geom, std::uint32_t prim, double b1, double b2,
                                               Vec3d p) const = 0;
+  // The point of the B-rep nearest to `p` on the faces of the triangles in `starts` (each face
+  // searched once, by Newton steps from its first start's (u, v); a foot outside its face's trim
+  // does not count), with the face's unit outward normal there. A `p` that lies on that face
+  // within the B-rep's tolerance is returned unchanged (its normal from the face). nullopt when
+  // no face gives a foot point.
+  virtual std::optional<NearestFacePoint> nearest_on_faces(std::uint32_t geom, std::span<const FaceStart> starts,
+                                                           Vec3d p) const = 0;
   // The t > 0 where the line org + t dir crosses the face of triangle `prim`, by Newton steps on
   // (u, v, t) from the triangle's (u, v) at barycentrics (b1, b2), the crossing nearest to that
   // start; nullopt when there is none near it.

@@ -71,8 +71,17 @@ struct CadSolid {
   CadLink link;  // one entry per triangle
 };
 
+// Where a CAD file's load spent its time (wall seconds): reading (parsing and converting to
+// B-rep shapes, with the reader's checks), meshing (BRepMesh_IncrementalMesh, the fold
+// remeshing included) and checking (the triangles against their faces, welding, orientation,
+// storing the curves of edges on planar faces).
+struct CadLoadTimes {
+  double read = 0, mesh = 0, check = 0;
+};
+
 struct CadModel {
   std::vector<CadSolid> solids;
+  CadLoadTimes times;
   std::string units;                  // "mm" (STEP, IGES) or "model units" (BREP)
   double linear_deflection = 0;       // the one used
   std::vector<std::string> warnings;  // skipped entities, faces without triangulation, shells

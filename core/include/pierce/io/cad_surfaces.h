@@ -24,6 +24,9 @@ class CadSurfaces final : public analysis::ExactSurfaces {
   std::span<const std::uint8_t> folded(std::uint32_t geom) const override;
   std::optional<analysis::SurfacePoint> project(std::uint32_t geom, std::uint32_t prim, double b1, double b2,
                                                 Vec3d p) const override;
+  std::optional<analysis::NearestFacePoint> nearest_on_faces(std::uint32_t geom,
+                                                             std::span<const analysis::FaceStart> starts,
+                                                             Vec3d p) const override;
   std::optional<analysis::SurfaceCrossing> intersect(std::uint32_t geom, std::uint32_t prim, double b1, double b2,
                                                      Vec3d org, Vec3d dir) const override;
   std::optional<double> exact_exit(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin) const override;
@@ -35,6 +38,9 @@ class CadSurfaces final : public analysis::ExactSurfaces {
   struct Intersectors;  // OpenCASCADE shape intersectors, built on first use
   struct Classifiers;   // per face, whether a (u, v) lies inside its trimming wires
   struct HiddenFaces;   // the patches that bulge into the solid, for hidden_crossing
+  // project(), also giving the foot's (u, v) on the face.
+  std::optional<analysis::SurfacePoint> foot(std::uint32_t geom, std::uint32_t prim, double b1, double b2, Vec3d p,
+                                             double& u, double& v) const;
   std::vector<CadLink> links_;
   std::vector<std::vector<std::uint8_t>> folded_;
   std::unique_ptr<Intersectors> intersectors_;

@@ -15,6 +15,7 @@ struct LoadedFile {
   std::string units;                  // "mm" for STEP/IGES, "model units" otherwise
   double linear_deflection = 0;       // CAD: tessellation used; meshes: 0
   std::vector<std::string> warnings;  // CAD: what was skipped or repaired
+  CadLoadTimes cad_times;             // CAD: where the load spent its time
   std::vector<CadLink> cad;           // CAD: per geometry of the file, its triangles' link to the
                                       // B-rep (pierce/io/cad_surfaces.h); meshes: empty
 };
