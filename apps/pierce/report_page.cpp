@@ -4,6 +4,7 @@
 #include <string_view>
 
 #include "pierce/version.h"
+#include "markup_text.h"
 
 namespace pierce::cli {
 
@@ -14,20 +15,6 @@ extern const std::string_view report_page_html, report_page_css, report_page_js,
 }  // namespace report_assets
 
 namespace {
-
-std::string html_escaped(std::string_view s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 // Text placed inside a <script> element: "</" written "<\/" (the same string to JavaScript and
 // JSON), so that nothing in it can close the element early.
@@ -47,7 +34,7 @@ std::string report_page(const std::string& title, const nlohmann::ordered_json& 
   using namespace report_assets;
   // The template's markers, each replaced wherever it occurs.
   const std::pair<std::string_view, std::string> fills[] = {
-      {"{{title}}", html_escaped(title)},
+      {"{{title}}", markup_escaped(title)},
       {"{{version}}", PIERCE_VERSION_STRING},
       {"/*{{style}}*/", std::string(report_page_css)},
       {"{{data}}", script_safe(data.dump())},

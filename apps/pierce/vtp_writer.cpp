@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "base64.h"
+#include "markup_text.h"
 
 namespace pierce::cli {
 
@@ -48,20 +49,6 @@ class Writer {
   std::FILE* f_;
 };
 
-std::string xml_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
 std::size_t size_of(const DataArray& a) {
   return std::visit([](const auto& v) { return v.size(); }, a);
 }
@@ -96,8 +83,8 @@ bool write_vtp(std::FILE* out, const PolyData& d) {
   Writer w(out);
   auto arrays = [&](const char* tag, const std::vector<std::pair<std::string, DataArray>>& list) {
     if (list.empty()) return;
-    std::fprintf(out, "      <%s Scalars=\"%s\">\n", tag, xml_escape(list.front().first).c_str());
-    for (const auto& [name, a] : list) std::visit([&, &n = name](const auto& v) { w.array(xml_escape(n), v); }, a);
+    std::fprintf(out, "      <%s Scalars=\"%s\">\n", tag, markup_escaped(list.front().first).c_str());
+    for (const auto& [name, a] : list) std::visit([&, &n = name](const auto& v) { w.array(markup_escaped(n), v); }, a);
     std::fprintf(out, "      </%s>\n", tag);
   };
   arrays("PointData", d.point_data);
