@@ -62,4 +62,11 @@ class StealMeter {
   Times start_;
 };
 
+// The closing line of a bench's output: the load average now and the CPU time stolen since
+// `steal` was made, so a reader can tell whether the run was quiet.
+inline void print_run_end(const StealMeter& steal) {
+  std::printf("load average at end: %s; CPU time stolen by the hypervisor: %s\n", load_average().c_str(),
+              steal.percent().c_str());
+}
+
 }  // namespace pierce::bench

@@ -164,7 +164,8 @@ int run(int argc, char** argv) {
   const StealMeter steal;
   bench_regions(o);
   bench_pairs(o);
-  std::printf("\nsteal during the run: %s\n", steal.percent().c_str());
+  std::printf("\n");
+  print_run_end(steal);
   return 0;
 }
 

@@ -145,8 +145,8 @@ int run(int argc, char** argv) {
                 open_s);
   }
   std::filesystem::remove_all(dir);
-  std::cout << "load average at end: " << load_average() << "; CPU time stolen by the hypervisor: " << steal.percent()
-            << "\n";
+  std::cout.flush();
+  print_run_end(steal);
   return 0;
 }
 

@@ -136,8 +136,8 @@ int run(int argc, char** argv) {
               "BVH %.0f MB); plain Embree loading the same file and building its scene %.0f MB; ratio %.2f\n",
               pierce_mb, rss_before, rss_loaded, rss_built, double(accel.memory_bytes()) / 1048576.0, embree_mb,
               embree_mb > 0 ? pierce_mb / embree_mb : 0.0);
-  std::cout << "load average at end: " << load_average() << "; CPU time stolen by the hypervisor: " << steal.percent()
-            << "\n";
+  std::cout.flush();
+  print_run_end(steal);
   return 0;
 }
 
