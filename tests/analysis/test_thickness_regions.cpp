@@ -81,13 +81,21 @@ void expect_floor(const ThicknessRegion& reg, const Pocket& p, double area_tol) 
   EXPECT_TRUE(reg.faces.empty());  // a mesh
 }
 
-class PocketFloors : public ::testing::TestWithParam<SampleAt> {};
+class PocketFloors : public ::testing::TestWithParam<SampleAt> {
+ protected:
+  // The test's sampling, thin below min_thickness, thick above max_thickness.
+  ThicknessOptions options(double min_thickness, double max_thickness = std::numeric_limits<double>::infinity()) const {
+    ThicknessOptions o;
+    o.per = GetParam();
+    o.min_thickness = min_thickness;
+    o.max_thickness = max_thickness;
+    return o;
+  }
+};
 
 TEST_P(PocketFloors, EachThinFloorIsOneRegionWithItsMinimumAndArea) {
   const auto world = make_world({pocket_block(kBlock, kPockets, 1.0)});
-  ThicknessOptions o;
-  o.per = GetParam();
-  o.min_thickness = 1.5;
+  ThicknessOptions o = options(1.5);
   const ThicknessResult r = compute_thickness(world->accel, o);
   check_ids(r, o, world->scene);
   ASSERT_EQ(r.thin_regions.size(), 2u);  // floors 0.5 and 1.0; not 1.5 (exactly T) nor 2.0
@@ -98,9 +106,7 @@ TEST_P(PocketFloors, EachThinFloorIsOneRegionWithItsMinimumAndArea) {
 
 TEST_P(PocketFloors, AWallOfExactlyTheThresholdIsNotThin) {
   const auto world = make_world({pocket_block(kBlock, kPockets, 1.0)});
-  ThicknessOptions o;
-  o.per = GetParam();
-  o.min_thickness = 1.0;  // the second floor is exactly 1.0
+  ThicknessOptions o = options(1.0);  // the second floor is exactly 1.0
   const ThicknessResult r = compute_thickness(world->accel, o);
   check_ids(r, o, world->scene);
   ASSERT_EQ(r.thin_regions.size(), 1u);
@@ -110,9 +116,7 @@ TEST_P(PocketFloors, AWallOfExactlyTheThresholdIsNotThin) {
 TEST_P(PocketFloors, CoarseMeshAreaIsRefined) {
   // The bottom is two 40 x 30 triangles: the floor's underside is found by refinement only.
   const auto world = make_world({coarse_pocket_block(kBlock, kPockets[0])});
-  ThicknessOptions o;
-  o.per = GetParam();
-  o.min_thickness = 1.5;
+  ThicknessOptions o = options(1.5);
   const ThicknessResult r = compute_thickness(world->accel, o);
   check_ids(r, o, world->scene);
   ASSERT_EQ(r.thin_regions.size(), 1u);
@@ -129,10 +133,7 @@ TEST_P(PocketFloors, CoarseMeshAreaIsRefined) {
 
 TEST_P(PocketFloors, ThickRegionsAboveMax) {
   const auto world = make_world({pocket_block(kBlock, kPockets, 1.0)});
-  ThicknessOptions o;
-  o.per = GetParam();
-  o.min_thickness = 1.5;
-  o.max_thickness = 5;
+  ThicknessOptions o = options(1.5, 5);
   const ThicknessResult r = compute_thickness(world->accel, o);
   check_ids(r, o, world->scene);
   ASSERT_EQ(r.thin_regions.size(), 2u);
@@ -150,9 +151,7 @@ TEST_P(PocketFloors, ThickRegionsAboveMax) {
 
 TEST_P(PocketFloors, NoThresholdNoRegions) {
   const auto world = make_world({pocket_block(kBlock, kPockets, 2.0)});
-  ThicknessOptions o;
-  o.per = GetParam();
-  const ThicknessResult r = compute_thickness(world->accel, o);
+  const ThicknessResult r = compute_thickness(world->accel, options(0));
   EXPECT_TRUE(r.thin_regions.empty());
   EXPECT_TRUE(r.thick_regions.empty());
   ASSERT_EQ(r.region.size(), r.size());
@@ -162,11 +161,9 @@ TEST_P(PocketFloors, NoThresholdNoRegions) {
 TEST_P(PocketFloors, ConeAndSphereGroupByTheSameRule) {
   const auto world = make_world({pocket_block(kBlock, kPockets, 1.0)});
   for (auto method : {analysis::ThicknessMethod::cone, analysis::ThicknessMethod::sphere}) {
-    ThicknessOptions o;
-    o.per = GetParam();
+    ThicknessOptions o = options(1.5);
     o.method = method;
     o.cone_rays = 9;
-    o.min_thickness = 1.5;
     const ThicknessResult r = compute_thickness(world->accel, o);
     check_ids(r, o, world->scene);
     ASSERT_FALSE(r.thin_regions.empty()) << enum_name(method);
@@ -186,10 +183,7 @@ TEST_P(PocketFloors, ConeAndSphereGroupByTheSameRule) {
 // the map of one run: rows, statistics and regions, whatever order the parts come in.
 TEST_P(PocketFloors, AssembledFromPartsIsOneRun) {
   const auto world = make_world({pocket_block(kBlock, kPockets, 1.0)});
-  ThicknessOptions o;
-  o.per = GetParam();
-  o.min_thickness = 1.5;
-  o.max_thickness = 5;
+  ThicknessOptions o = options(1.5, 5);
   const ThicknessResult whole = compute_thickness(world->accel, o);
   const Geometry& geo = world->scene.geometry(0);
   const std::size_t n = o.per == SampleAt::vertex ? geo.vertices.size() : geo.triangles.size();

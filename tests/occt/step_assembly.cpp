@@ -42,6 +42,16 @@
 namespace pierce::test_models {
 namespace {
 
+// Writes an XCAF document (names kept) as STEP and closes it; throws when OpenCASCADE cannot.
+void write_and_close(const Handle(TDocStd_Document)& doc, const std::string& path) {
+  STEPCAFControl_Writer writer;
+  writer.SetNameMode(true);
+  const bool transferred = writer.Transfer(doc, STEPControl_AsIs);
+  const bool written = transferred && writer.Write(path.c_str()) == IFSelect_RetDone;
+  XCAFApp_Application::GetApplication()->Close(doc);
+  if (!written) throw std::runtime_error("OpenCASCADE could not write " + path);
+}
+
 TopLoc_Location at(double x, double y, double z) {
   gp_Trsf t;
   t.SetTranslation(gp_Vec(x, y, z));
@@ -67,12 +77,7 @@ void write_step_assembly(const std::string& path) {
   tool->AddComponent(assy, block, at(6, 1, 2));
   tool->AddComponent(assy, clash, at(6, 6, 1.5));
   tool->UpdateAssemblies();
-  STEPCAFControl_Writer writer;
-  writer.SetNameMode(true);
-  const bool transferred = writer.Transfer(doc, STEPControl_AsIs);
-  const bool written = transferred && writer.Write(path.c_str()) == IFSelect_RetDone;
-  XCAFApp_Application::GetApplication()->Close(doc);
-  if (!written) throw std::runtime_error("OpenCASCADE could not write " + path);
+  write_and_close(doc, path);
 }
 
 TopoDS_Shape bent_sheet() {
@@ -246,12 +251,7 @@ void write_connector_assembly(const std::string& path) {
   for (int i = 0; i < per_row; ++i)
     for (double y : {2.5, 5.5}) tool->AddComponent(assy, p, at(pin_x(i) - 0.32, y - 0.32, -3));
   tool->UpdateAssemblies();
-  STEPCAFControl_Writer writer;
-  writer.SetNameMode(true);
-  const bool transferred = writer.Transfer(doc, STEPControl_AsIs);
-  const bool written = transferred && writer.Write(path.c_str()) == IFSelect_RetDone;
-  XCAFApp_Application::GetApplication()->Close(doc);
-  if (!written) throw std::runtime_error("OpenCASCADE could not write " + path);
+  write_and_close(doc, path);
 }
 
 void write_step(const TopoDS_Shape& shape, const std::string& path) {
@@ -290,12 +290,7 @@ void write_step_part(const TopoDS_Shape& shape, const std::string& name, const s
   XCAFApp_Application::GetApplication()->NewDocument("MDTV-XCAF", doc);
   const Handle(XCAFDoc_ShapeTool) tool = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
   TDataStd_Name::Set(tool->AddShape(shape, false), name.c_str());
-  STEPCAFControl_Writer writer;
-  writer.SetNameMode(true);
-  const bool transferred = writer.Transfer(doc, STEPControl_AsIs);
-  const bool written = transferred && writer.Write(path.c_str()) == IFSelect_RetDone;
-  XCAFApp_Application::GetApplication()->Close(doc);
-  if (!written) throw std::runtime_error("OpenCASCADE could not write " + path);
+  write_and_close(doc, path);
 }
 
 void write_brep(const TopoDS_Shape& shape, const std::string& path) {

@@ -20,3 +20,22 @@ def run(main):
     status = main()
     if status:
         sys.exit(status)
+
+
+FAILURES = []
+
+
+def check(condition, message):
+    """Records a failed check (printed as it happens); status() tells the outcome."""
+    print(("ok: " if condition else "FAIL: ") + message)
+    if not condition:
+        FAILURES.append(message)
+
+
+def status():
+    """main()'s return value after its check() calls: 0 when all passed, else 1."""
+    if FAILURES:
+        print("%d check(s) failed" % len(FAILURES))
+        return 1
+    print("all checks passed")
+    return 0

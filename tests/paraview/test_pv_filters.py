@@ -13,16 +13,8 @@ from paraview.simple import LoadPlugin, Line, OpenDataFile, Plane, UpdatePipelin
 from paraview import servermanager
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import pvbatch_main  # noqa: E402
-
-FAILURES = []
-
-
-def check(condition, message):
-    if not condition:
-        FAILURES.append(message)
-        print("FAIL: " + message)
-
+import pvbatch_main
+from pvbatch_main import check  # noqa: E402
 
 def near(a, b, tol=1e-6):
     return abs(a - b) <= tol
@@ -127,11 +119,7 @@ def main():
     rays = set(cell_values(segments, "RayId"))
     check(len(rays) == 16, "rays along the plane's normals that hit: %d" % len(rays))
 
-    if FAILURES:
-        print("%d check(s) failed" % len(FAILURES))
-        return 1
-    print("all checks passed")
-    return 0
+    return pvbatch_main.status()
 
 
 if __name__ == "__main__":

@@ -18,16 +18,8 @@ from paraview import servermanager
 from paraview.simple import LoadPlugin, OpenDataFile, UpdatePipeline
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import pvbatch_main  # noqa: E402
-
-FAILURES = []
-
-
-def check(condition, message):
-    print(("ok: " if condition else "FAIL: ") + message)
-    if not condition:
-        FAILURES.append(message)
-
+import pvbatch_main
+from pvbatch_main import check  # noqa: E402
 
 def same(a, b, rel=1e-9):
     if a is None or b is None:
@@ -129,11 +121,7 @@ def main():
               all(same(a, b) for a, b in zip(row[5], p["point"] or [None] * 3)))
         check(ok, "pair %s: ParaView %s, CLI %s" % (p["kind"], row, p))
 
-    if FAILURES:
-        print("%d check(s) failed" % len(FAILURES))
-        return 1
-    print("all checks passed")
-    return 0
+    return pvbatch_main.status()
 
 
 if __name__ == "__main__":
