@@ -101,6 +101,20 @@ def window_screenshot(path):
     return shot.save(path)
 
 
+def fitted_view_shot(path, width, height):
+    """The active 3D view turned isometric and fitted to the whole document, saved to `path` on
+    white (GUI tests only); returns `path`."""
+    import FreeCADGui as Gui
+    from PySide2 import QtWidgets
+    QtWidgets.QApplication.processEvents()
+    view = Gui.ActiveDocument.ActiveView
+    view.viewIsometric()
+    view.fitAll()
+    QtWidgets.QApplication.processEvents()
+    view.saveImage(path, width, height, "White")
+    return path
+
+
 def clipped_widgets(form):
     """Visible widgets of a task panel that reach past the visible width of the task view, or are
     narrower than their minimum size hint (their text or buttons cut off): [(name, why)]."""

@@ -115,13 +115,7 @@ def body(c):
     c.check("minimum" in panel.message.text().lower(), "panel message: %r" % panel.message.text())
     c.check(panel.legend.range is not None, "legend shows the range %s" % (panel.legend.range,))
 
-    QtWidgets.QApplication.processEvents()
-    view = Gui.ActiveDocument.ActiveView
-    view.viewIsometric()
-    view.fitAll()
-    QtWidgets.QApplication.processEvents()
-    shot = os.path.join(OUT, "freecad-thickness-view.png")
-    view.saveImage(shot, 1200, 800, "White")
+    shot = fc_check.fitted_view_shot(os.path.join(OUT, "freecad-thickness-view.png"), 1200, 800)
     c.check(os.path.isfile(shot), "3D view screenshot saved: " + shot)
     bg, colours, vivid = image_stats(shot)
     c.check(bg < 0.9 and colours > 20, "screenshot not blank: %.0f%% background, %d colours" % (100 * bg, colours))

@@ -99,12 +99,8 @@ def body(c):
     st = run.solids[0].stats.summary
     c.check(st.min < 0.1 and lo > st.min, "the default legend starts above the knife edge's slivers: %.4g to %.4g "
             "(samples %.4g to %.4g)" % (lo, hi, st.min, st.max))
+    shot = fc_check.fitted_view_shot(os.path.join(OUT, "freecad-thickness-default-view.png"), 1000, 700)
     view = Gui.ActiveDocument.ActiveView
-    view.viewIsometric()
-    view.fitAll()
-    QtWidgets.QApplication.processEvents()
-    shot = os.path.join(OUT, "freecad-thickness-default-view.png")
-    view.saveImage(shot, 1000, 700, "White")
     bands, vivid = hue_bands(shot)
     wide = sorted(k for k, v in bands.items() if v > 0.05 and k not in ("magenta", "cyan"))
     c.check(len(wide) >= 2, "the default map shows more than one colour band: %s (%s)" % (
