@@ -59,7 +59,8 @@ TEST(ClosestPoint, EquallyNearTrianglesGiveTheLowestPrim) {
 
 
 // A soup of random triangles in two geometries: closest_point (with and without an exclusion, and
-// within a radius) and for_each_overlapping give what checking every triangle gives.
+// within a radius) and for_each_overlapping (on the double BVH, and on the float BVH with the
+// scene's double corners) give what checking every triangle gives.
 TEST(ProximityQueries, MatchBruteForce) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1.0, 1.0), s(0.02, 0.3);
@@ -81,7 +82,9 @@ TEST(ProximityQueries, MatchBruteForce) {
   }
   const WideBvhd bvh = build_wide_bvh<double>(scene);
   ASSERT_EQ(bvh.triangles, all.size());
+  const WideBvhf bvh_float = build_wide_bvh<float>(scene);
   NodeStack<double> stack;
+  NodeStack<float> stack_float;
   for (int k = 0; k < 300; ++k) {
     const Vec3d q{1.5 * u(rng), 1.5 * u(rng), 1.5 * u(rng)};
     const std::uint32_t skip[] = {std::uint32_t(k % 700)};
@@ -108,24 +111,36 @@ TEST(ProximityQueries, MatchBruteForce) {
         EXPECT_EQ(got.point, want.point) << k;
       }
     }
-    BBoxd box;
-    box.extend(q), box.extend(q + Vec3d{0.2 * s(rng), 0.2 * s(rng), 0.2 * s(rng)});
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> want, got;
-    for (const Triangle<double>& t : all) {
-      BBoxd tb;
-      tb.extend(t.v0), tb.extend(t.v1), tb.extend(t.v2);
-      if (tb.lo.x <= box.hi.x && tb.hi.x >= box.lo.x && tb.lo.y <= box.hi.y && tb.hi.y >= box.lo.y &&
-          tb.lo.z <= box.hi.z && tb.hi.z >= box.lo.z)
-        want.emplace_back(t.geom, t.prim);
+    // A random box, and a point box on a triangle's highest corner: a closed test touching it.
+    BBoxd random_box, corner_box;
+    random_box.extend(q), random_box.extend(q + Vec3d{0.2 * s(rng), 0.2 * s(rng), 0.2 * s(rng)});
+    const Triangle<double>& touched = all[std::size_t(k) * 7 % all.size()];
+    corner_box.extend(vmax(touched.v0, vmax(touched.v1, touched.v2)));
+    const BBoxd boxes[] = {random_box, corner_box};
+    for (int which = 0; which < 2; ++which) {
+      const BBoxd& box = boxes[which];
+      std::vector<std::pair<std::uint32_t, std::uint32_t>> want, got, got_float;
+      for (const Triangle<double>& t : all) {
+        BBoxd tb;
+        tb.extend(t.v0), tb.extend(t.v1), tb.extend(t.v2);
+        if (boxes_overlap(tb, box)) want.emplace_back(t.geom, t.prim);
+      }
+      auto collect = [&](std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) {
+        return [&](const Triangle<double>& t) {
+          const Triangle<double>& input = all[t.geom * 700 + t.prim];
+          EXPECT_TRUE(t.v0 == input.v0 && t.v1 == input.v1 && t.v2 == input.v2) << "corners in the input's order";
+          out.emplace_back(t.geom, t.prim);
+        };
+      };
+      for_each_overlapping(bvh, box, stack, collect(got));
+      for_each_overlapping(scene, bvh_float, box, stack_float, collect(got_float));
+      std::sort(want.begin(), want.end());
+      std::sort(got.begin(), got.end());
+      std::sort(got_float.begin(), got_float.end());
+      EXPECT_EQ(got, want) << k;
+      EXPECT_EQ(got_float, want) << "float BVH, " << k;
+      EXPECT_FALSE(which == 1 && want.empty()) << "the touched triangle is found";
     }
-    for_each_overlapping(bvh, box, stack, [&](const Triangle<double>& t) {
-      const Triangle<double>& input = all[t.geom * 700 + t.prim];
-      EXPECT_TRUE(t.v0 == input.v0 && t.v1 == input.v1 && t.v2 == input.v2) << "corners in the input's order";
-      got.emplace_back(t.geom, t.prim);
-    });
-    std::sort(want.begin(), want.end());
-    std::sort(got.begin(), got.end());
-    EXPECT_EQ(got, want) << k;
   }
 }
 

@@ -1,7 +1,11 @@
 // Contact, clash and clearance between solids, and the triangle-triangle distance under them.
 #include <gtest/gtest.h>
 
+#include <tbb/global_control.h>
+
+#include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "analysis_scenes.h"
 #include "pierce/analysis/solid_pairs.h"
@@ -150,6 +154,95 @@ TEST(SolidPairs, AssemblyReportsEachPairOnceInOrder) {
   EXPECT_EQ(r0.pairs[0].kind, PairKind::clash);
   EXPECT_EQ(r0.pairs[1].kind, PairKind::contact);
   for (std::size_t i = r.tri_offset[4]; i < r.tri_offset[5]; ++i) EXPECT_EQ(r.triangle_clearance[i], 0.5);
+}
+
+// Bumpy blobs close enough to clash or pass within the clearance: every triangle's clearance and
+// every clearance pair's gap are the minima over all triangle pairs of two solids, checked by
+// measuring them all; the report is the same on one thread and on all.
+TEST(SolidPairs, ClearanceIsTheMinimumOverAllTrianglePairs) {
+  constexpr double kClearance = 0.3;
+  std::vector<gen::Mesh> solids;
+  for (int i = 0; i < 4; ++i) solids.push_back(gen::translated(gen::blob(2, std::uint64_t(3 + i)), {2.1 * (i % 2), 2.1 * (i / 2), 0}));
+  solids.push_back(gen::box({-1.2, -1.2, -1.6}, {3.3, 3.3, -1.2}, "floor"));
+  auto w = make_world(solids);
+  const Scene& scene = w->scene;
+  const SolidPairReport all_threads = pairs_of(*w, kClearance);
+  SolidPairReport one_thread;
+  {
+    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    one_thread = pairs_of(*w, kClearance);
+  }
+  ASSERT_EQ(all_threads.pairs.size(), one_thread.pairs.size());
+  for (std::size_t k = 0; k < all_threads.pairs.size(); ++k) {
+    const SolidPair &x = all_threads.pairs[k], &y = one_thread.pairs[k];
+    EXPECT_EQ(std::tie(x.solid_a, x.solid_b, x.kind), std::tie(y.solid_a, y.solid_b, y.kind)) << k;
+    if (x.kind == PairKind::clearance) {
+      EXPECT_TRUE(x.gap == y.gap && x.point == y.point && x.point_b == y.point_b) << k;
+    }
+  }
+  EXPECT_EQ(all_threads.triangle_clearance, one_thread.triangle_clearance);
+
+  // Brute force: the least distance from each triangle to each other solid.
+  const std::size_t solid_count = scene.geometries().size();
+  std::vector<std::vector<double>> least(all_threads.tri_offset.back(), std::vector<double>(solid_count, INFINITY));
+  for (std::uint32_t g = 0; g < solid_count; ++g)
+    for (std::uint32_t h = 0; h < solid_count; ++h) {
+      if (g == h) continue;
+      const Geometry &ga = scene.geometry(g), &gb = scene.geometry(h);
+      for (std::size_t i = 0; i < ga.triangles.size(); ++i) {
+        const Vec3d a[3] = {ga.vertices[ga.triangles[i][0]], ga.vertices[ga.triangles[i][1]], ga.vertices[ga.triangles[i][2]]};
+        double& out = least[all_threads.tri_offset[g] + i][h];
+        for (const Tri& t : gb.triangles) {
+          const Vec3d b[3] = {gb.vertices[t[0]], gb.vertices[t[1]], gb.vertices[t[2]]};
+          out = std::min(out, triangle_distance(a, b).dist2);
+        }
+      }
+    }
+  std::size_t near_triangles = 0;
+  for (std::size_t i = 0; i < least.size(); ++i) {
+    const double nearest = std::sqrt(*std::min_element(least[i].begin(), least[i].end()));
+    // Contact and clash set a triangle's clearance to 0 where the rays or faces show it; elsewhere
+    // it is the exact distance, capped.
+    if (all_threads.triangle_clearance[i] == 0 && nearest < kClearance) continue;
+    EXPECT_EQ(all_threads.triangle_clearance[i], std::min(nearest, kClearance)) << i;
+    near_triangles += nearest < kClearance;
+  }
+  EXPECT_GT(near_triangles, 50u);
+  std::size_t clearance_pairs = 0;
+  for (const SolidPair& p : all_threads.pairs) {
+    if (p.kind != PairKind::clearance) continue;
+    ++clearance_pairs;
+    double gap2 = INFINITY;
+    for (std::size_t i = all_threads.tri_offset[p.solid_a]; i < all_threads.tri_offset[p.solid_a + 1]; ++i)
+      gap2 = std::min(gap2, least[i][p.solid_b]);
+    EXPECT_EQ(p.gap, std::sqrt(gap2)) << p.solid_a << "-" << p.solid_b;
+    EXPECT_NEAR(length(p.point - p.point_b), p.gap, 1e-12);
+  }
+  EXPECT_GT(clearance_pairs, 0u);
+  // Every pair within the clearance is reported, whatever its kind.
+  for (std::uint32_t g = 0; g < solid_count; ++g)
+    for (std::uint32_t h = g + 1; h < solid_count; ++h) {
+      double gap2 = INFINITY;
+      for (std::size_t i = all_threads.tri_offset[g]; i < all_threads.tri_offset[g + 1]; ++i) gap2 = std::min(gap2, least[i][h]);
+      const bool reported = std::any_of(all_threads.pairs.begin(), all_threads.pairs.end(),
+                                        [&](const SolidPair& p) { return p.solid_a == g && p.solid_b == h; });
+      EXPECT_EQ(reported, std::sqrt(gap2) < kClearance) << g << "-" << h;
+    }
+}
+
+// a's triangles within the clearance of b all lie nearer to c, a lid over both: the a-b pair is
+// still measured and reported (0.2 apart), as are a-c and b-c (0.1).
+TEST(SolidPairs, PairBehindANearerSolidIsReported) {
+  auto w = make_world({gen::box({0, 0, 0}, {1, 1, 1}, "a"), gen::box({1.2, 0, 0.5}, {2, 1, 1}, "b"),
+                       gen::box({-0.5, -0.5, 1.1}, {2.5, 1.5, 1.5}, "c")});
+  const SolidPairReport r = pairs_of(*w, 0.3);
+  ASSERT_EQ(r.pairs.size(), 3u);
+  for (const SolidPair& p : r.pairs) EXPECT_EQ(p.kind, PairKind::clearance);
+  EXPECT_EQ(r.pairs[2].solid_a, 0u);
+  EXPECT_EQ(r.pairs[2].solid_b, 1u);
+  EXPECT_NEAR(r.pairs[2].gap, 0.2, 1e-12);
+  EXPECT_NEAR(r.pairs[0].gap, 0.1, 1e-12);
+  EXPECT_NEAR(r.pairs[1].gap, 0.1, 1e-12);
 }
 
 TEST(SolidPairs, BadOptionsThrow) {

@@ -7,9 +7,12 @@
 #include <map>
 #include <set>
 #include <stdexcept>
+#include <tuple>
+#include <unordered_map>
 #include <utility>
 
 #include "pierce/analysis/bvh_query.h"
+#include "pierce/exact_predicates.h"
 #include "pierce/parallel_for_items.h"
 
 namespace pierce::analysis {
@@ -67,6 +70,12 @@ bool segment_crosses(Vec3d p, Vec3d q, const Vec3d t[3], Vec3d& at) {
   return true;
 }
 
+// Whether the corners of q lie strictly on one side of p's plane (false if p is degenerate).
+bool strictly_beside(const Vec3d p[3], const Vec3d q[3]) {
+  const int s = orient3d(p[0], p[1], p[2], q[0]);
+  return s != 0 && orient3d(p[0], p[1], p[2], q[1]) == s && orient3d(p[0], p[1], p[2], q[2]) == s;
+}
+
 bool is_degenerate_triangle(const Vec3d t[3]) {
   const Vec3d n = cross(t[1] - t[0], t[2] - t[0]);
   return !(dot(n, n) > 0);
@@ -76,12 +85,14 @@ bool is_degenerate_triangle(const Vec3d t[3]) {
 
 TrianglePairDistance triangle_distance(const Vec3d a[3], const Vec3d b[3]) {
   // Intersecting triangles: an edge of one crosses the other (or, coplanar, an edge crosses an edge
-  // or a corner lies inside, which the features below find at distance 0).
-  for (int k = 0; k < 3; ++k) {
-    Vec3d at;
-    if (segment_crosses(a[k], a[(k + 1) % 3], b, at) || segment_crosses(b[k], b[(k + 1) % 3], a, at))
-      return {0, at, at};
-  }
+  // or a corner lies inside, which the features below find at distance 0). Triangles on strict
+  // sides of one's plane (decided exactly) cannot intersect, and skip the crossing tests.
+  if (!strictly_beside(a, b) && !strictly_beside(b, a))
+    for (int k = 0; k < 3; ++k) {
+      Vec3d at;
+      if (segment_crosses(a[k], a[(k + 1) % 3], b, at) || segment_crosses(b[k], b[(k + 1) % 3], a, at))
+        return {0, at, at};
+    }
   // Otherwise the closest points are a corner and the other triangle, or two edges.
   Closest2 best;
   for (int k = 0; k < 3; ++k) {
@@ -108,40 +119,186 @@ void corners(const Geometry& g, std::uint32_t p, Vec3d out[3]) {
   for (int k = 0; k < 3; ++k) out[k] = g.vertices[g.triangles[p][k]];
 }
 
-// For every triangle, its nearest point in each other solid within distance `d` (strictly), by box
-// queries grown by d on the scene's BVH. Item i is the triangle at tri_offset[g] + p.
+constexpr std::uint32_t kMixedSolids = kInvalidId;
+
+// The solid below each child slot of the BVH (index node * kWideArity + slot), or kMixedSolids
+// where the subtree holds triangles of more than one solid or the slot is unused. Writes the
+// slots below `ref` and returns the solid of `ref`'s subtree.
+std::uint32_t solid_below(const WideBvhf& bvh, NodeRef ref, std::vector<std::uint32_t>& slot_solid) {
+  std::uint32_t solid = kInvalidId - 1;  // none seen yet
+  auto merge = [&](std::uint32_t g) { solid = solid == kInvalidId - 1 || solid == g ? g : kMixedSolids; };
+  if (is_leaf(ref)) {
+    for (std::uint32_t b = leaf_first_block(ref), e = b + leaf_block_count(ref); b < e; ++b)
+      for (std::uint32_t m = bvh.blocks[b].valid; m != 0; m &= m - 1) merge(bvh.blocks[b].geom[__builtin_ctz(m)]);
+  } else {
+    const WideNode<float>& n = bvh.nodes[ref];
+    for (int k = 0; k < kWideArity; ++k)
+      if (n.valid() >> k & 1u) merge(slot_solid[std::size_t(ref) * kWideArity + std::size_t(k)] = solid_below(bvh, n.child[k], slot_solid));
+  }
+  return solid;
+}
+
+// Squared distance between two boxes (0 where they overlap): a lower bound on the squared
+// distance between anything inside them.
+double box_distance2(const BBoxd& a, const BBoxd& b) {
+  double d2 = 0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const double gap = std::max({a.lo[k] - b.hi[k], b.lo[k] - a.hi[k], 0.0});
+    d2 += gap * gap;
+  }
+  return d2;
+}
+
+// A triangle of another solid near a leaf's triangles: its corners, box and plane (unit normal
+// n, offset w: dot(n, x) = w in the plane).
+struct Candidate {
+  std::uint32_t geom, prim;
+  Vec3d c[3];
+  BBoxd box;
+  Vec3d n;
+  double w;
+};
+
+// The plane of triangle t as (unit normal, offset); a zero normal where the corners are too
+// close to collinear for the rounded normal to be trusted to 1e-12.
+std::pair<Vec3d, double> plane_of(const Vec3d t[3]) {
+  const Vec3d e1 = t[1] - t[0], e2 = t[2] - t[0], c = cross(e1, e2);
+  const double len = length(c);
+  if (!(len > 1e-4 * length(e1) * length(e2))) return {Vec3d{}, 0.0};
+  const Vec3d n = c * (1 / len);
+  return {n, dot(n, t[0])};
+}
+
+// How far the corners of q all lie on one side of the plane (n, w), less `slack`; 0 if they do
+// not. With a slack above the rounding of the dot products it bounds the distance between q and
+// anything in that plane from below.
+double plane_gap(Vec3d n, double w, const Vec3d q[3], double slack) {
+  const double s0 = dot(n, q[0]) - w, s1 = dot(n, q[1]) - w, s2 = dot(n, q[2]) - w;
+  const double gap = s0 > 0 && s1 > 0 && s2 > 0 ? std::min({s0, s1, s2})
+                     : s0 < 0 && s1 < 0 && s2 < 0 ? -std::max({s0, s1, s2})
+                                                  : 0.0;
+  return std::max(gap - slack, 0.0);
+}
+
+// One of those candidates for one triangle: a lower bound on its squared distance (from the
+// boxes), and its index.
+struct Bounded {
+  double bound;
+  std::uint32_t candidate;
+};
+
+struct PairsWorker {
+  NodeStack<float> stack;
+  std::vector<Candidate> candidates;
+  std::vector<Bounded> bounded;
+  std::unordered_map<std::uint64_t, double> pair_best;  // (lower solid, higher) -> least dist2 seen
+};
+
+// For every triangle, points in other solids within distance `d` (strictly), enough for two
+// exact minima: the triangle's distance to the nearest other solid (the least of its entries),
+// and each pair's distance, measured from its lower solid's triangles (the least of their entries
+// for the higher solid, and the first triangle that reaches it, holds the pair's points).
+// Triangle i is at tri_offset[g] + p. The float BVH is queried once per leaf block and solid, with
+// the box of the block's triangles of that solid grown by d (for_each_overlapping's rule), and
+// the subtrees of that solid skipped. Each triangle measures exactly the candidates whose lower
+// bound (boxes, then either triangle's plane) lies below d, nearest bound first, while the bound
+// can still reach the triangle's nearest so far or, for a higher solid, the least distance this
+// thread has seen for the pair: a candidate at either minimum is never skipped. Of equally near
+// points in one solid the lexicographically smallest pair is kept, so neither minimum nor its
+// points depend on the BVH's layout, the order of the candidates or the threads.
 bool nearest_per_triangle(const Accel& accel, const std::vector<std::size_t>& tri_offset, double d,
                           std::vector<std::vector<Near>>& near, const Progress& progress) {
   const Scene& scene = accel.scene();
-  const WideBvhd& bvh = accel.wide_double();
-  const std::size_t n = tri_offset.back();
-  near.assign(n, {});
-  tbb::enumerable_thread_specific<NodeStack<double>> stacks;
-  return parallel_for_items(n, 64, stacks, progress, [&](NodeStack<double>& stack, std::size_t i) {
-    const auto g = std::uint32_t(std::upper_bound(tri_offset.begin(), tri_offset.end(), i) - tri_offset.begin() - 1);
-    const Geometry& geom = scene.geometry(g);
-    Vec3d a[3];
-    corners(geom, std::uint32_t(i - tri_offset[g]), a);
-    if (is_degenerate_triangle(a)) return;
-    BBoxd box;
-    for (const Vec3d& c : a) box.extend(c);
-    box.lo = box.lo - Vec3d{d, d, d};
-    box.hi = box.hi + Vec3d{d, d, d};
-    std::vector<Near>& mine = near[i];
-    for_each_overlapping(bvh, box, stack, [&](const Triangle<double>& t) {
-      if (t.geom == g) return;
-      const Vec3d b[3] = {t.v0, t.v1, t.v2};
-      const TrianglePairDistance td = triangle_distance(a, b);
-      if (!(td.dist2 < d * d)) return;
-      auto it = std::find_if(mine.begin(), mine.end(), [&](const Near& x) { return x.other == t.geom; });
-      if (it == mine.end()) {
-        mine.push_back({t.geom, td.dist2, td.on_a, td.on_b});
-      } else if (td.dist2 < it->dist2) {
-        // Equal distances keep the first found; the points may then depend on the BVH's layout, the
-        // distance does not.
-        *it = {t.geom, td.dist2, td.on_a, td.on_b};
+  const WideBvhf& bvh = accel.wide();
+  std::vector<std::uint32_t> slot_solid(bvh.nodes.size() * kWideArity, kMixedSolids);
+  if (!bvh.empty()) solid_below(bvh, bvh.root, slot_solid);
+  const double grow = d + bvh.scene_max_abs * 0x1p-23 + double(std::numeric_limits<float>::denorm_min());
+  const double d2 = d * d;
+  // Above the rounding of plane_gap's dot products for the scene's coordinates and well-shaped
+  // planes (plane_of), and far below any clearance worth asking for.
+  const double slack = 1e-10 * (bvh.scene_max_abs + scene.scale());
+  near.assign(tri_offset.back(), {});
+  auto box_of = [&](std::uint32_t geom, std::uint32_t prim, Vec3d c[3]) {
+    corners(scene.geometry(geom), prim, c);
+    BBoxd b;
+    for (int k = 0; k < 3; ++k) b.extend(c[k]);
+    return b;
+  };
+  tbb::enumerable_thread_specific<PairsWorker> workers;
+  return parallel_for_items(bvh.empty() ? 0 : bvh.blocks.size(), 16, workers, progress, [&](PairsWorker& w, std::size_t blk) {
+    const TriBlock<float>& block = bvh.blocks[blk];
+    std::uint32_t todo = block.valid;
+    while (todo != 0) {
+      const std::uint32_t g = block.geom[__builtin_ctz(todo)];
+      std::uint32_t lanes = 0;
+      BBoxd entry;
+      Vec3d c[3];
+      for (std::uint32_t m = todo; m != 0; m &= m - 1)
+        if (const int l = __builtin_ctz(m); block.geom[l] == g) lanes |= 1u << l, entry.extend(box_of(g, block.prim[l], c));
+      todo &= ~lanes;
+      entry.lo = entry.lo - Vec3d{grow, grow, grow};
+      entry.hi = entry.hi + Vec3d{grow, grow, grow};
+      auto enter = [&](const BBoxf& b, const WideNode<float>& node, int slot) {
+        return slot_solid[std::size_t(&node - bvh.nodes.data()) * kWideArity + std::size_t(slot)] != g &&
+               boxes_overlap(b, entry);
+      };
+      w.candidates.clear();
+      for_each_entered(bvh, w.stack, enter, [&](const Triangle<float>& tf) {
+        if (tf.geom == g) return;
+        Candidate k;
+        k.geom = tf.geom, k.prim = tf.prim;
+        k.box = box_of(tf.geom, tf.prim, k.c);
+        if (!boxes_overlap(k.box, entry)) return;
+        std::tie(k.n, k.w) = plane_of(k.c);
+        w.candidates.push_back(k);
+      });
+      for (std::uint32_t m = lanes; m != 0; m &= m - 1) {
+        const std::uint32_t prim = block.prim[__builtin_ctz(m)];
+        Vec3d a[3];
+        const BBoxd box = box_of(g, prim, a);
+        if (is_degenerate_triangle(a)) continue;
+        const auto [n, off] = plane_of(a);
+        w.bounded.clear();
+        for (std::uint32_t j = 0; j < w.candidates.size(); ++j)
+          if (const double bound = box_distance2(box, w.candidates[j].box); bound < d2) w.bounded.push_back({bound, j});
+        std::sort(w.bounded.begin(), w.bounded.end(), [](const Bounded& x, const Bounded& y) {
+          return std::tie(x.bound, x.candidate) < std::tie(y.bound, y.candidate);
+        });
+        std::vector<Near>& mine = near[tri_offset[g] + prim];
+        double nearest = std::numeric_limits<double>::infinity();  // of this triangle, so far
+        // Whether a candidate in solid h with this bound can still reach a minimum.
+        auto wanted = [&](double bound, std::uint32_t h) {
+          if (!(bound < d2)) return false;
+          if (bound <= nearest) return true;
+          if (h < g) return false;
+          const auto seen = w.pair_best.find(std::uint64_t(g) << 32 | h);
+          return seen == w.pair_best.end() || bound <= seen->second;
+        };
+        for (const Bounded& bounded : w.bounded) {
+          const Candidate& k = w.candidates[bounded.candidate];
+          if (!wanted(bounded.bound, k.geom)) continue;
+          const double gap = std::max(plane_gap(n, off, k.c, slack), plane_gap(k.n, k.w, a, slack));
+          if (!wanted(gap * gap, k.geom)) continue;
+          const Vec3d* b = k.c;
+          const TrianglePairDistance td = triangle_distance(a, b);
+          if (!(td.dist2 < d2)) continue;
+          nearest = std::min(nearest, td.dist2);
+          if (k.geom > g) {
+            const auto [seen, fresh] = w.pair_best.try_emplace(std::uint64_t(g) << 32 | k.geom, td.dist2);
+            if (!fresh) seen->second = std::min(seen->second, td.dist2);
+          }
+          auto it = std::find_if(mine.begin(), mine.end(), [&](const Near& x) { return x.other == k.geom; });
+          const Near found{k.geom, td.dist2, td.on_a, td.on_b};
+          if (it == mine.end()) {
+            mine.push_back(found);
+          } else if (std::tuple(td.dist2, td.on_a.x, td.on_a.y, td.on_a.z, td.on_b.x, td.on_b.y, td.on_b.z) <
+                     std::tuple(it->dist2, it->on_self.x, it->on_self.y, it->on_self.z, it->on_other.x,
+                                it->on_other.y, it->on_other.z)) {
+            *it = found;
+          }
+        }
       }
-    });
+    }
   });
 }
 

@@ -86,16 +86,17 @@ double longest_edge(Vec3d a, Vec3d b, Vec3d c) {
   return std::sqrt(std::max({dot(b - a, b - a), dot(c - b, c - b), dot(a - c, a - c)}));
 }
 
-// The triangle of geometry `geom` closest to q (kInvalidId if the geometry has none), on the
-// scene's double wide BVH: boxes around q grow until one holds a triangle of the solid.
-std::uint32_t nearest_triangle(const WideBvhd& bvh, std::uint32_t geom, Vec3d q, double start, double limit,
-                               NodeStack<double>& stack) {
+// The triangle of geometry `geom` closest to q (kInvalidId if the geometry has none), found on
+// the scene's float BVH and measured in double: boxes around q grow until one holds a triangle
+// of the solid.
+std::uint32_t nearest_triangle(const Scene& scene, const WideBvhf& bvh, std::uint32_t geom, Vec3d q, double start,
+                               double limit, NodeStack<float>& stack) {
   for (double h = start; h <= limit; h *= 8) {
     BBoxd box;
     box.lo = q - Vec3d{h, h, h}, box.hi = q + Vec3d{h, h, h};
     double best = std::numeric_limits<double>::infinity();
     std::uint32_t prim = kInvalidId;
-    for_each_overlapping(bvh, box, stack, [&](const Triangle<double>& t) {
+    for_each_overlapping(scene, bvh, box, stack, [&](const Triangle<double>& t) {
       if (t.geom != geom) return;
       const Vec3d p = closest_point_on_triangle(q, t.v0, t.v1, t.v2);
       const double d2 = dot(p - q, p - q);
@@ -114,7 +115,7 @@ struct Sub {
 
 struct Worker {
   HitIterator it;
-  NodeStack<double> stack;
+  NodeStack<float> stack;
   std::vector<Sub> subs;
 };
 
@@ -150,7 +151,7 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
   std::vector<SolidTopo> topo;
   std::vector<std::uint32_t> topo_of(scene.geometries().size(), kInvalidId);
   std::vector<std::uint32_t> exit_tri(n, kInvalidId);
-  const WideBvhd& bvh = accel.wide_double();
+  const WideBvhf& bvh = accel.wide();
   const double tie = tie_distance(scene, opts.tie_tolerance_rel);
   const double start = std::max(tie, 1e-9 * scene.scale()), limit = 2 * scene.scale();
   for (std::size_t k = 0; k < set.solids.size(); ++k) {
@@ -182,10 +183,10 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
       }
     }
     // Where each flagged sample's ray leaves: the nearest triangle of the same solid.
-    tbb::enumerable_thread_specific<NodeStack<double>> stacks;
-    parallel_for_items(e - b, 256, stacks, {}, [&](NodeStack<double>& stack, std::size_t j) {
+    tbb::enumerable_thread_specific<NodeStack<float>> stacks;
+    parallel_for_items(e - b, 256, stacks, {}, [&](NodeStack<float>& stack, std::size_t j) {
       const std::size_t i = b + j;
-      if (flag[i] != 0) exit_tri[i] = nearest_triangle(bvh, g, exit_of(i), start, limit, stack);
+      if (flag[i] != 0) exit_tri[i] = nearest_triangle(scene, bvh, g, exit_of(i), start, limit, stack);
     });
     for (std::size_t i = b; i < e; ++i) {
       if (exit_tri[i] == kInvalidId) continue;
@@ -269,6 +270,7 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
     if (exit_tri[i] != kInvalidId) s.push_back(exit_tri[i]);
   }
   std::vector<RefineItem> items;
+  std::vector<std::uint32_t> listed(tri_base.back(), kInvalidId);  // the last region listing it
   auto in_region = [&](const SolidTopo& t, std::uint32_t element, std::int32_t r) {
     const std::uint32_t row = t.row_of[element];
     return row != kInvalidId && res.region[row] == r;
@@ -281,10 +283,10 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
     std::vector<std::uint32_t> tris;
     for (std::uint32_t tri : seeds[r])
       for (auto v : geo.triangles[tri])
-        for (std::uint32_t nb : t.around_vertex(v)) tris.push_back(nb);
+        for (std::uint32_t nb : t.around_vertex(v))
+          if (std::uint32_t& l = listed[tri_base[k] + nb]; l != r) l = std::uint32_t(r), tris.push_back(nb);
     std::vector<std::uint32_t>().swap(seeds[r]);
     std::sort(tris.begin(), tris.end());
-    tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
     for (std::uint32_t tri : tris) {
       std::int32_t& o = own[tri_base[k] + tri];
       if (o >= 0) continue;
@@ -355,7 +357,7 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
       std::int32_t r = own;
       if (r < 0) {
         const Vec3d exit = (k.a + k.b + k.c) * (1.0 / 3.0) + inward * t;
-        const std::uint32_t at = nearest_triangle(bvh, item.geom, exit, start, limit, w.stack);
+        const std::uint32_t at = nearest_triangle(scene, bvh, item.geom, exit, start, limit, w.stack);
         if (at != kInvalidId) r = region_on(topology, at, want);
       }
       if (r < 0) r = std::int32_t(item.region);

@@ -5,10 +5,12 @@
 #include <cstdint>
 #include <limits>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "pierce/hit.h"
 #include "pierce/proximity.h"
+#include "pierce/scene.h"
 #include "pierce/wide_bvh.h"
 
 namespace pierce::analysis {
@@ -30,49 +32,81 @@ struct ClosestPoint {
 ClosestPoint closest_point(const WideBvhd& bvh, Vec3d q, double max_dist2, std::span<const std::uint32_t> exclude,
                            NodeStack<double>& stack);
 
-// Calls f(const Triangle<double>&) (corners in the input's order) for every triangle in the leaves
-// reached by descending through the nodes whose box passes `enter(const BBoxd&)` (from the root's
-// children down; a root leaf's triangles are all given). `stack` is scratch space reused between
-// calls.
-template <typename Enter, typename F>
-void for_each_entered(const WideBvhd& bvh, NodeStack<double>& stack, Enter&& enter, F&& f) {
-  struct Each : ProximityPolicy<double> {
+// Calls f(const Triangle<T>&) (corners in the input's order) for every triangle in the leaves
+// reached by descending through the child slots that pass `enter(const BBox<T>& box)` or, where
+// the test needs to know the slot, `enter(box, const WideNode<T>& node, int slot)` (from the
+// root's children down; a root leaf's triangles are all given). `stack` is scratch space reused
+// between calls.
+template <typename T, typename Enter, typename F>
+void for_each_entered(const WideBvh<T>& bvh, NodeStack<T>& stack, Enter&& enter, F&& f) {
+  struct Each : ProximityPolicy<T> {
     F& f;
     explicit Each(F& fn) : f(fn) {}
-    double hi() const { return 0; }
-    double cull_bound() const { return 0; }
-    void leaf(const TriBlock<double>& b) {
+    T hi() const { return 0; }
+    T cull_bound() const { return 0; }
+    void leaf(const TriBlock<T>& b) {
       for (std::uint32_t m = b.valid; m != 0; m &= m - 1) {
         const int l = __builtin_ctz(m);
         f(b.triangle(l));
       }
     }
   } p{f};
-  auto entered = [&](const WideNode<double>& n, double* key) {
+  auto entered = [&](const WideNode<T>& n, T* key) {
     std::uint32_t mask = 0;
     for (int s = 0; s < kWideArity; ++s) {
       key[s] = 0;  // no order: every node entered is visited
-      BBoxd box;
+      BBox<T> box;
       box.lo = {n.lo[0][s], n.lo[1][s], n.lo[2][s]};
       box.hi = {n.hi[0][s], n.hi[1][s], n.hi[2][s]};
-      if (enter(static_cast<const BBoxd&>(box))) mask |= 1u << s;
+      bool in;
+      if constexpr (std::is_invocable_v<Enter&, const BBox<T>&, const WideNode<T>&, int>)
+        in = enter(static_cast<const BBox<T>&>(box), n, s);
+      else
+        in = enter(static_cast<const BBox<T>&>(box));
+      if (in) mask |= 1u << s;
     }
     return mask;
   };
   traverse_proximity(bvh, stack, entered, p);
 }
 
+// Whether closed boxes a and b overlap.
+template <typename A, typename B>
+bool boxes_overlap(const BBox<A>& a, const BBox<B>& b) {
+  return double(a.lo.x) <= double(b.hi.x) && double(a.hi.x) >= double(b.lo.x) && double(a.lo.y) <= double(b.hi.y) &&
+         double(a.hi.y) >= double(b.lo.y) && double(a.lo.z) <= double(b.hi.z) && double(a.hi.z) >= double(b.lo.z);
+}
+
 // Calls f(const Triangle<double>&) for every triangle whose box overlaps `box` (closed test).
 template <typename F>
 void for_each_overlapping(const WideBvhd& bvh, const BBoxd& box, NodeStack<double>& stack, F&& f) {
-  auto overlaps = [&](const BBoxd& b) {
-    return b.lo.x <= box.hi.x && b.hi.x >= box.lo.x && b.lo.y <= box.hi.y && b.hi.y >= box.lo.y &&
-           b.lo.z <= box.hi.z && b.hi.z >= box.lo.z;
-  };
+  auto overlaps = [&](const BBoxd& b) { return boxes_overlap(b, box); };
   for_each_entered(bvh, stack, overlaps, [&](const Triangle<double>& t) {
     BBoxd tb;
     tb.extend(t.v0), tb.extend(t.v1), tb.extend(t.v2);
     if (overlaps(tb)) f(t);
+  });
+}
+
+// The same triangles as above, in double precision from `scene`, found on the float BVH built
+// from it (Accel::wide()), so that a query needs no double BVH. A float corner lies within
+// |x| * 2^-24 of the double one it rounds, so nodes are entered with `box` grown by twice that
+// for the scene's largest coordinate: every triangle whose double box overlaps `box` is reached,
+// then tested exactly. The calls come in the float BVH's order.
+template <typename F>
+void for_each_overlapping(const Scene& scene, const WideBvhf& bvh, const BBoxd& box, NodeStack<float>& stack, F&& f) {
+  const double grow = bvh.scene_max_abs * 0x1p-23 + double(std::numeric_limits<float>::denorm_min());
+  BBoxd entry = box;
+  entry.lo = entry.lo - Vec3d{grow, grow, grow};
+  entry.hi = entry.hi + Vec3d{grow, grow, grow};
+  auto enter = [&](const BBoxf& b) { return boxes_overlap(b, entry); };
+  for_each_entered(bvh, stack, enter, [&](const Triangle<float>& tf) {
+    const Geometry& g = scene.geometry(tf.geom);
+    const Tri& c = g.triangles[tf.prim];
+    const Triangle<double> t{g.vertices[c[0]], g.vertices[c[1]], g.vertices[c[2]], tf.geom, tf.prim};
+    BBoxd tb;
+    tb.extend(t.v0), tb.extend(t.v1), tb.extend(t.v2);
+    if (boxes_overlap(tb, box)) f(t);
   });
 }
 
