@@ -79,8 +79,9 @@ void pqPierceThicknessColoring::onSourceAdded(pqPipelineSource* source)
 void pqPierceThicknessColoring::onRepresentationAdded(
   pqPipelineSource*, pqDataRepresentation* repr, int port)
 {
-  // Only displays that map scalars through a colour map (surface displays in render views).
-  if (port == kSurfacesPort && repr &&
+  // Only displays that map scalars through a colour map (surface displays in render views), and
+  // not those a loaded state creates: they keep the state's colours.
+  if (port == kSurfacesPort && repr && !pqApplicationCore::instance()->isLoadingState() &&
     vtkSMPVRepresentationProxy::SafeDownCast(repr->getProxy()) != nullptr)
   {
     // The representation has no data yet: it gets it when the view updates after Apply.

@@ -8,7 +8,8 @@
  * in the output's field data ThicknessColorRange (Pierce's default range: 0 to 4 x Min Thickness
  * when that is set, else the 2nd to 98th percentile). The colour map's automatic rescaling is
  * then set to Never, so later Applies keep that range; Rescale to Data Range, a custom range, or
- * another automatic rescale mode chosen by the user take over from there. pvpython and pvbatch
+ * another automatic rescale mode chosen by the user take over from there. Displays created by
+ * loading a state file keep the state's colours. pvpython and pvbatch
  * run no GUI behaviour: see pierce_vtk.show_thickness.
  */
 #ifndef pqPierceThicknessColoring_h
