@@ -41,7 +41,7 @@ def sampling_names():
 class ThicknessOptions:
     def __init__(self, method=None, per=None, deflection=None, angular_deflection=None, max_edge=None,
                  threshold=0.0, max_distance=math.inf, color_min=None, color_max=None, create_objects=True,
-                 on_brep=None, keep_previous=False):
+                 on_brep=None, keep_previous=False, max_thickness=0.0):
         # None: Pierce's defaults (pierce.thickness_defaults(), the CLI's --method and --per).
         defaults = _pierce().thickness_defaults() if method is None or per is None else {}
         self.method = method or defaults["method"]  # ray | cone | sphere
@@ -57,6 +57,7 @@ class ThicknessOptions:
         self.max_edge = max_edge      # mm: split longer triangle edges (samples on big flat faces);
                                       # "auto" = 4% of the selection's diagonal, 0 = no splitting
         self.threshold = threshold    # thin below this (mm); 0 = no highlight
+        self.max_thickness = max_thickness  # thick above this (mm): thick regions; 0 = none
         self.max_distance = max_distance
         self.color_min = color_min    # legend range; None = default_color_range()
         self.color_max = color_max
@@ -72,6 +73,8 @@ class ThicknessOptions:
             raise UserError("Sampling must be per %s, not '%s'." % (" or per ".join(sampling_names()), self.per))
         if self.threshold < 0 or not math.isfinite(self.threshold):
             raise UserError("The thin threshold must be a length >= 0.")
+        if self.max_thickness < 0 or not math.isfinite(self.max_thickness):
+            raise UserError("The thick threshold must be a length >= 0 (0: none).")
         if not self.max_distance > 0:
             raise UserError("The maximum distance must be positive.")
         if (self.color_min is not None and self.color_max is not None and
@@ -89,7 +92,7 @@ class SolidThickness:
         self.status = status
         self.stats = stats  # pierce.SolidThickness
         self.thin_count = thin_count
-        # Per sample: region id (-1: none; see ThicknessRun.thin_regions) and sample point.
+        # Per sample: region id (-1: none; see ThicknessRun.region) and sample point.
         self.region = region if region is not None else np.full(len(values), -1, dtype=np.int32)
         self.points = points
         self.normals = normals  # unit outward normals per sample (zero where none)
@@ -124,6 +127,8 @@ class ThicknessRun:
     # Thin walls as findings (pierce.ThicknessRegion, thinnest first): samples strictly below the
     # threshold connected on a solid's surface and across the wall; area on both sides.
     thin_regions: list = None
+    # Thick walls (pierce.ThicknessRegion, thickest first): samples strictly above max_thickness.
+    thick_regions: list = None
     # Whether valid values lie below / above the legend range (shown clamped to its ends).
     clamped: tuple = (False, False)
 
@@ -134,10 +139,20 @@ class ThicknessRun:
                 return s
         return None
 
+    def region(self, k):
+        """Region k, as the per-sample ids number them (SolidThickness.region): the thin regions
+        first, then the thick ones at len(thin_regions) + their index."""
+        thin = self.thin_regions or []
+        return thin[k] if k < len(thin) else self.thick_regions[k - len(thin)]
+
+    def region_id(self, thick, index):
+        """The id of thin (thick=False) or thick region `index`, as region() takes it."""
+        return len(self.thin_regions or []) + index if thick else index
+
     def region_box(self, k):
-        """(lo, hi) corners of the box around thin region k: its samples' triangles (per face) or
-        vertices (per vertex), its thinnest point and that ray's exit."""
-        g = self.thin_regions[k]
+        """(lo, hi) corners of the box around region k: its samples' triangles (per face) or
+        vertices (per vertex), its extreme point and that ray's exit."""
+        g = self.region(k)
         s = self.region_solid(g)
         pts = [np.asarray(g.point, dtype=float), np.asarray(g.exit, dtype=float)]
         if s is not None:
@@ -152,26 +167,29 @@ class ThicknessRun:
         return pts.min(axis=0), pts.max(axis=0)
 
     def region_view(self, k):
-        """(centre, radius, direction) to look at thin region k: the centre and half the diagonal
-        of region_box(k), and the outward normal at its thinnest sample (look against it to see
-        that side of the wall; None when unknown)."""
+        """(centre, radius, direction) to look at region k: the centre and half the diagonal of
+        region_box(k), and the outward normal at its extreme sample (the thinnest, or the thickest
+        for a thick region; look against it to see that side of the wall; None when unknown)."""
         lo, hi = self.region_box(k)
-        g = self.thin_regions[k]
+        g = self.region(k)
         s = self.region_solid(g)
         normal = None
         if s is not None and s.normals is not None:
             idx = np.nonzero(s.region == k)[0]
             if len(idx):
-                vals = np.where(np.isfinite(s.values[idx]), s.values[idx], np.inf)
-                n = s.normals[idx[int(np.argmin(vals))]]
+                if g.thick:
+                    extreme = int(np.argmax(np.where(np.isfinite(s.values[idx]), s.values[idx], -np.inf)))
+                else:
+                    extreme = int(np.argmin(np.where(np.isfinite(s.values[idx]), s.values[idx], np.inf)))
+                n = s.normals[idx[extreme]]
                 if np.linalg.norm(n) > 0.5:
                     normal = tuple(float(c) for c in n / np.linalg.norm(n))
         return tuple(float(c) for c in (lo + hi) / 2), float(np.linalg.norm(hi - lo) / 2), normal
 
     def region_faces(self, k):
-        """(object, ["Face3", ...]) of the analysed object's B-rep faces thin region k covers
-        (empty on FreeCAD's mesh, whose triangles keep their faces in face_of_triangle)."""
-        g = self.thin_regions[k]
+        """(object, ["Face3", ...]) of the analysed object's B-rep faces region k covers (empty on
+        FreeCAD's mesh, whose triangles keep their faces in face_of_triangle)."""
+        g = self.region(k)
         s = self.region_solid(g)
         if s is None:
             return None, []
@@ -230,6 +248,13 @@ class ThicknessRun:
             for k, g in enumerate(self.thin_regions[:10]):
                 lines.append("  region %d: '%s' min %.4g, area %.4g, %d samples, at (%.4g, %.4g, %.4g)" % (
                     k + 1, self.region_label(g), g.thickness, g.area, g.samples, *g.point))
+        if o.max_thickness > 0 and self.thick_regions is not None:
+            lines.append("%d thick region(s) (thickness > %.4g; area both sides)%s" % (
+                len(self.thick_regions), o.max_thickness,
+                ", the ten thickest:" if len(self.thick_regions) > 10 else ""))
+            for k, g in enumerate(self.thick_regions[:10]):
+                lines.append("  thick region %d: '%s' max %.4g, area %.4g, %d samples, at (%.4g, %.4g, %.4g)" % (
+                    k + 1, self.region_label(g), g.thickness, g.area, g.samples, *g.point))
         lines.append(self.legend_text())
         for w in self.warnings:
             lines.append("Pierce: warning: " + w)
@@ -246,6 +271,7 @@ def compute(objects, options, progress=None, cancel=None):
     start_stage(progress, "Pierce: thickness (%s)" % options.method)
     res = pierce.thickness(model.scene, method=options.method, per=options.per,
                            max_distance=options.max_distance, min_thickness=options.threshold,
+                           max_thickness=options.max_thickness if options.max_thickness > 0 else math.inf,
                            progress=progress, cancel=cancel)
     solids = []
     geom_of = res.solid
@@ -268,7 +294,8 @@ def compute(objects, options, progress=None, cancel=None):
         hi = lo + max(abs(lo) * 1e-3, 1e-9)  # a uniform wall: any non-empty range shows one colour
     clamped = (bool(len(valid)) and bool(valid.min() < lo), bool(len(valid)) and bool(valid.max() > hi))
     return ThicknessRun(options, model, solids, (lo, hi), warnings + model.warnings,
-                        thin_regions=list(res.thin_regions), clamped=clamped)
+                        thin_regions=list(res.thin_regions), thick_regions=list(res.thick_regions),
+                        clamped=clamped)
 
 
 def default_color_range(valid, threshold=0.0):

@@ -7,7 +7,9 @@
 - with a thin threshold the region list lists the thin spot; "Zoom to thinnest" frames it, and
   its thin colour fills a good part of the view;
 - re-running leaves one result, labelled with the part's Label;
-- the caliper reads the wall where the map is clicked.
+- the caliper reads the wall where the map is clicked;
+- with a thick threshold too, the selector above the list shows the thick regions; choosing one
+  selects its faces and frames it; "Zoom to thinnest" goes back to the thin ones.
 
 Screenshots (window and view) go to $PIERCE_TEST_OUT.
 
@@ -192,6 +194,59 @@ def body(c):
     c.check("Pierce caliper: wall 0.8 mm on 'Fillet006'" in text, "the caliper reads the fin through the map: %r"
             % text.splitlines()[-1:])
     panel.caliper_button.setChecked(False)
+
+    # Thick above 1.2 mm as well: the 1.5 mm base; the selector lists the thick regions.
+    c.check(not panel.region_kind.isEnabled(), "without a thick threshold the region selector is off")
+    panel.thick_above.setValue(1.2)
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(part)
+    panel.on_run()
+    run = panel.last_result
+    c.check(run.options.max_thickness == 1.2 and bool(run.thick_regions),
+            "thick above 1.2 mm finds thick regions: %d (%r)" % (len(run.thick_regions or []), panel.message.text()))
+    c.check(panel.region_kind.isEnabled() and not panel.showing_thick() and
+            panel.regions.count() == len(run.thin_regions), "the list still shows the %d thin region(s) first: "
+            "%d rows" % (len(run.thin_regions), panel.regions.count()))
+    panel.region_kind.setCurrentIndex(1)
+    QtWidgets.QApplication.processEvents()
+    c.check(panel.regions.count() == len(run.thick_regions), "Thick regions: the list shows the %d thick "
+            "region(s): %d rows" % (len(run.thick_regions), panel.regions.count()))
+    c.check(panel.regions.count() > 0 and panel.regions.item(0).text().startswith("1. Fillet006: max"),
+            "thick rows are numbered from 1 with their maximum: %r" % (
+                panel.regions.item(0).text() if panel.regions.count() else None))
+    c.check("thick region" in panel.regions_label.text(), "the label says thick: %r" % panel.regions_label.text())
+    bad, width = fc_check.clipped_widgets(panel.form)
+    c.check(not bad, "the panel with the thick regions fits the %d px task view: %s" % (width, bad))
+    if run.thick_regions:
+        panel.regions.setCurrentRow(0)
+        for _ in range(3):
+            QtWidgets.QApplication.processEvents()
+        g = run.thick_regions[0]
+        k = run.region_id(True, 0)
+        c.check(panel.message.text().replace("\u200b", "").startswith(  # the message's wrap points dropped
+            "Thick region 1: 'Fillet006', max %.4g mm" % g.thickness),
+                "choosing thick region 1 says so: %r" % panel.message.text())
+        obj, faces = run.region_faces(k)
+        selected = sorted(n for sel in Gui.Selection.getSelectionEx() for n in sel.SubElementNames)
+        c.check(bool(faces) and selected == sorted(faces), "its faces are selected: %s (region: %s)" % (
+            selected, faces))
+        view = Gui.ActiveDocument.ActiveView
+        size = view.getSize()
+        px = view.getPointOnScreen(FreeCAD.Vector(*g.point))
+        c.check(0 <= px[0] < size[0] and 0 <= px[1] < size[1], "the thick region's point is in the view: %s of %s"
+                % (tuple(px), tuple(size)))
+        centre, radius, _ = run.region_view(k)
+        right = view.getCameraNode().orientation.getValue().multVec(__import__("pivy").coin.SbVec3f(1, 0, 0))
+        ends = [view.getPointOnScreen(FreeCAD.Vector(*[c0 + sgn * radius * r for c0, r in zip(centre, right)]))
+                for sgn in (-1, 1)]
+        extent = abs(ends[1][0] - ends[0][0])
+        c.check(0.2 * min(size) < extent <= 1.0 * min(size), "the thick region (%.3g mm across) spans %d px of "
+                "the %d px view" % (2 * radius, extent, min(size)))
+        c.check(fc_check.window_screenshot(os.path.join(OUT, "freecad-thickness-thick.png")), "window screenshot saved")
+    panel.zoom_button.click()
+    QtWidgets.QApplication.processEvents()
+    c.check(not panel.showing_thick() and panel.regions.currentRow() == 0 and "Region 1" in panel.message.text(),
+            "zoom to thinnest goes back to the thin regions: %r" % panel.message.text())
     Gui.Control.closeDialog()
 
 

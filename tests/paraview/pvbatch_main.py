@@ -19,6 +19,7 @@ def run(main):
     the X display and fail with GLXBadContext."""
     status = main()
     if status:
+        sys.stdout.flush()  # pvbatch's exit does not flush what the failed checks printed
         sys.exit(status)
 
 

@@ -1,20 +1,20 @@
-"""Rendering test (run under `xvfb-run -a pvbatch`): the STEP assembly's thickness, colour-mapped,
-rendered to a PNG; the image must show the model, not a blank background, with both ends of the
-colour map (2 mm walls blue, the plate's 10 mm sides red).
+"""Rendering test (run under `xvfb-run -a pvbatch`): the STEP assembly's thickness shown by
+pierce_vtk.show_thickness, rendered to a PNG; the colour map must span ThicknessColorRange and the
+image must show the model, not a blank background, with both ends of the colour map (2 mm walls
+blue, the plate's 10 mm sides red).
 
     xvfb-run -a pvbatch test_pv_render.py --plugin PierceParaView.so --step assembly.step --png out.png
 """
 import os
 import sys
 
-from paraview.simple import CreateView, LoadPlugin, OpenDataFile, SaveScreenshot
+from paraview.simple import CreateView, GetColorTransferFunction, LoadPlugin, OpenDataFile, ResetCamera, SaveScreenshot
 from vtkmodules.vtkIOImage import vtkPNGReader
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-sys.path.insert(0, os.path.join(HERE, "..", "..", "plugins", "paraview", "screenshot"))
 import pvbatch_main  # noqa: E402
-from thickness_view import show_thickness  # noqa: E402
+from pierce_vtk import show_thickness  # noqa: E402
 
 BACKGROUND = (1.0, 1.0, 1.0)
 
@@ -51,7 +51,20 @@ def main():
     if hasattr(view, "UseColorPaletteForBackground"):
         view.UseColorPaletteForBackground = 0
     view.Background = list(BACKGROUND)
-    show_thickness(thickness, view, [25, -20, 18], [5, 5, 1])
+    show_thickness(thickness, view)
+    view.CameraPosition = [25, -20, 18]
+    view.CameraFocalPoint = [5, 5, 1]
+    view.CameraViewUp = [0, 0, 1]
+    ResetCamera(view)
+    colour_range = thickness.GetDataInformation().GetFieldDataInformation().GetArrayInformation("ThicknessColorRange")
+    expected = (colour_range.GetComponentRange(0)[0], colour_range.GetComponentRange(1)[1])
+    lut = GetColorTransferFunction("Thickness")
+    points = lut.RGBPoints
+    print("ThicknessColorRange %g to %g; colour map %g to %g (%s)"
+          % (expected[0], expected[1], points[0], points[-4], lut.AutomaticRescaleRangeMode))
+    if abs(points[0] - expected[0]) > 1e-9 or abs(points[-4] - expected[1]) > 1e-9:
+        print("FAIL: the colour map does not span ThicknessColorRange")
+        return 1
     if os.path.exists(args.png):
         os.remove(args.png)  # the test's own output from a previous run
     SaveScreenshot(args.png, view, ImageResolution=[400, 300])
@@ -64,7 +77,7 @@ def main():
     if share < 0.05:
         print("FAIL: the image is (nearly) blank")
         return 1
-    # Jet from 2 (blue: the plate's top, the 2 mm parts) to 10 (red: the plate's sides).
+    # ParaView's default map, blue (the plate's top, the 2 mm parts) to red (the plate's sides).
     if red < 0.05 or blue < 0.05:
         print("FAIL: the model is not colour-mapped by thickness")
         return 1

@@ -41,6 +41,9 @@ class ThicknessPanel(PanelBase):
         self.threshold = double_spin(0.0, 0.0, 1e6, special="off", step=0.1)
         self.threshold.setToolTip("Samples strictly thinner than this are coloured magenta and grouped into "
                                   "thin regions, listed below thinnest first")
+        self.thick_above = double_spin(0.0, 0.0, 1e6, special="off", step=0.1)
+        self.thick_above.setToolTip("Samples strictly thicker than this are grouped into thick regions (sink "
+                                    "marks in moulding), listed below thickest first")
         self.auto_range = check_box("Automatic legend", True,
                                     tooltip="With a thin threshold T: 0 to 4 x T; otherwise the 2nd to 98th "
                                             "percentile of the samples (pierce.default_color_range, as the CLI "
@@ -63,6 +66,7 @@ class ThicknessPanel(PanelBase):
         f.addRow("Method", self.method)
         f.addRow("Samples", self.per)
         f.addRow("Thin below", self.threshold)
+        f.addRow("Thick above", self.thick_above)
         f.addRow(self.auto_range)
         f.addRow(self.range_box)
         f.addRow(self.hide_sources)
@@ -100,7 +104,15 @@ class ThicknessPanel(PanelBase):
     def build_results(self, layout):
         self.legend = Legend()
         layout.addWidget(self.legend)
-        # Thin regions, thinnest first: choosing one selects its faces, frames it and highlights it.
+        # Thin regions thinnest first, or thick ones thickest first (the selector): choosing one
+        # selects its faces, frames it and highlights it.
+        self.region_kind = QtWidgets.QComboBox()
+        self.region_kind.addItems(["Thin regions", "Thick regions"])
+        self.region_kind.setToolTip("Which regions the list shows: thin (below 'Thin below') or thick (above "
+                                    "'Thick above')")
+        self.region_kind.setEnabled(False)
+        self.region_kind.currentIndexChanged.connect(lambda _: self.fill_regions())
+        layout.addWidget(self.region_kind)
         self.regions_label = QtWidgets.QLabel("Thin regions")
         self.regions_label.setWordWrap(True)
         layout.addWidget(self.regions_label)
@@ -130,7 +142,8 @@ class ThicknessPanel(PanelBase):
         self.summary.setMinimumHeight(100)
         layout.addWidget(self.summary)
         self.export_button = add_export_button(self, layout, lambda: (self.solids_to_analyse(), dict(
-            min_thickness=self.threshold.value(), method=self.method.currentText(),
+            min_thickness=self.threshold.value(), max_thickness=self.thick_above.value() or None,
+            method=self.method.currentText(),
             per="face" if self.per.currentIndex() == 0 else "vertex", deflection=self.deflection.value(),
             angular_deflection=self.angular.value())))
 
@@ -175,7 +188,7 @@ class ThicknessPanel(PanelBase):
                                 deflection=self.deflection.value(), angular_deflection=self.angular.value(),
                                 max_edge=(self.max_edge.value() or "auto") if self.split.isChecked() else 0.0,
                                 on_brep=self.on_brep.isChecked(),
-                                threshold=self.threshold.value(),
+                                threshold=self.threshold.value(), max_thickness=self.thick_above.value(),
                                 color_min=None if auto else self.range_min.value(),
                                 color_max=None if auto else self.range_max.value(),
                                 keep_previous=self.keep_previous.isChecked())
@@ -198,33 +211,60 @@ class ThicknessPanel(PanelBase):
                 if vo is not None:
                     vo.Visibility = False
         self._highlight.clear()
-        self.regions.blockSignals(True)
-        self.regions.clear()
-        regions = run.thin_regions or []
-        for k, g in enumerate(regions):
-            self.regions.addItem("%d. %s: min %.4g mm, %.4g mm\u00b2, %d samples" % (
-                k + 1, run.region_label(g), g.thickness, g.area, g.samples))
-        self.regions.setCurrentRow(-1)
-        self.regions.blockSignals(False)
-        if run.options.threshold > 0:
-            self.regions_label.setText("%d thin region(s), thickness < %.4g mm, thinnest first (area: both sides):"
-                                       % (len(regions), run.options.threshold))
-        else:
-            self.regions_label.setText("Thin regions: set 'Thin below' to list them.")
+        thick_only = run.options.max_thickness > 0 and not run.options.threshold > 0
+        self.region_kind.blockSignals(True)
+        self.region_kind.setCurrentIndex(1 if thick_only else 0)
+        self.region_kind.blockSignals(False)
+        self.region_kind.setEnabled(run.options.max_thickness > 0)
+        regions = self.fill_regions()
         self.zoom_button.setEnabled(any(s.stats.summary.count for s in run.solids))
         self.scroll_to(self.regions if regions else self.legend)
         mins = [s.stats.summary.min for s in run.solids if s.stats.summary.count]
         self.set_message("Thickness of %d solid(s): minimum %.4g mm. Results: '%s' in the tree." % (
             len(run.solids), min(mins) if mins else math.nan, run.group.Label if run.group else "-"))
 
-    def on_region(self, row):
-        """Selects the faces of thin region `row`, frames it in the 3D view and highlights it."""
+    def showing_thick(self):
+        """Whether the region list shows the thick regions (else the thin ones)."""
+        return self.region_kind.currentIndex() == 1
+
+    def fill_regions(self):
+        """Fills the list with the last result's thin or thick regions (as the selector says);
+        returns them."""
         run = self.last_result
-        if run is None or not run.thin_regions or not 0 <= row < len(run.thin_regions):
+        self._highlight.clear()
+        self.regions.blockSignals(True)
+        self.regions.clear()
+        thick = self.showing_thick()
+        regions = [] if run is None else (run.thick_regions if thick else run.thin_regions) or []
+        for k, g in enumerate(regions):
+            self.regions.addItem("%d. %s: %s %.4g mm, %.4g mm\u00b2, %d samples" % (
+                k + 1, run.region_label(g), "max" if thick else "min", g.thickness, g.area, g.samples))
+        self.regions.setCurrentRow(-1)
+        self.regions.blockSignals(False)
+        if run is None:
+            return regions
+        if thick:
+            self.regions_label.setText("%d thick region(s), thickness > %.4g mm, thickest first (area: both sides):"
+                                       % (len(regions), run.options.max_thickness))
+        elif run.options.threshold > 0:
+            self.regions_label.setText("%d thin region(s), thickness < %.4g mm, thinnest first (area: both sides):"
+                                       % (len(regions), run.options.threshold))
+        else:
+            self.regions_label.setText("Thin regions: set 'Thin below' to list them.")
+        return regions
+
+    def on_region(self, row):
+        """Selects the faces of the region in list row `row`, frames it in the 3D view and
+        highlights it."""
+        run = self.last_result
+        regions = None if run is None else run.thick_regions if self.showing_thick() else run.thin_regions
+        if not regions or not 0 <= row < len(regions):
             return
-        self.show_region(row)
+        self.show_region(run.region_id(self.showing_thick(), row))
 
     def show_region(self, k):
+        """Region k (ThicknessRun.region: thin ones first, then thick ones) selected, framed and
+        outlined."""
         import FreeCADGui as Gui
         run = self.last_result
         obj, faces = run.region_faces(k)
@@ -236,12 +276,14 @@ class ThicknessPanel(PanelBase):
         finally:
             self._selecting = False
         centre, radius, normal = run.region_view(k)
-        g = run.thin_regions[k]
+        g = run.region(k)
         s = run.region_solid(g)
         self._highlight.show(_region_edges(run, s, k), [g.point, g.exit])
         frame(centre, radius, direction=None if normal is None else tuple(-c for c in normal))
-        self.set_message("Region %d: '%s', min %.4g mm at (%.4g, %.4g, %.4g); highlighted in cyan%s." % (
-            k + 1, run.region_label(g), g.thickness, g.point[0], g.point[1], g.point[2],
+        number = k - len(run.thin_regions or []) + 1 if g.thick else k + 1
+        self.set_message("%s %d: '%s', %s %.4g mm at (%.4g, %.4g, %.4g); highlighted in cyan%s." % (
+            "Thick region" if g.thick else "Region", number, run.region_label(g), "max" if g.thick else "min",
+            g.thickness, g.point[0], g.point[1], g.point[2],
             ", faces %s selected" % ", ".join(faces) if faces else ""))
 
     def zoom_to_thinnest(self):
@@ -250,6 +292,8 @@ class ThicknessPanel(PanelBase):
         if run is None:
             return
         if run.thin_regions:
+            if self.showing_thick():
+                self.region_kind.setCurrentIndex(0)  # the list shows the thin regions again
             if self.regions.currentRow() == 0:
                 self.show_region(0)
             else:
@@ -279,7 +323,7 @@ class ThicknessPanel(PanelBase):
 
 
 def _region_edges(run, solid, k):
-    """The outline of thin region k's samples as segments: the edges of its triangles (per face)
+    """The outline of region k's samples as segments: the edges of its triangles (per face)
     or of the triangles around its vertices (per vertex), each once."""
     if solid is None:
         return []

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Makes docs/images/paraview_thickness.png: the ParaView GUI, under Xvfb, with the Pierce plugin
-# loaded and Pierce Thickness applied to the sample STEP assembly.
+# Makes docs/images/paraview_thickness.png: the ParaView GUI, under Xvfb, with the Pierce plugin,
+# after a user's clicks (first_screen.py): open samples/blob.stl, Apply, Filters ▸ Pierce ▸
+# Pierce Thickness, Apply with the default properties. Nothing is set by hand: the colours are
+# what the plugin's GUI behaviour gives a new Pierce Thickness display.
 #
 #   plugins/paraview/screenshot/make_screenshot.sh [BUILD_DIR] [OUT.png] [--force]
 #
@@ -12,7 +14,7 @@ build=${1:-$root/build}
 out=${2:-$root/docs/images/paraview_thickness.png}
 force=${3:-}
 plugin=$build/lib/paraview-plugins/PierceParaView/PierceParaView.so
-model=$root/samples/plate_assembly.step
+model=$root/samples/blob.stl
 [ -f "$plugin" ] || { echo "make_screenshot: no plugin at $plugin (build first)" >&2; exit 1; }
 [ -f "$model" ] || { echo "make_screenshot: no model at $model" >&2; exit 1; }
 if [ -e "$out" ] && [ "$force" != "--force" ]; then
@@ -23,18 +25,8 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 # -noreset: see tests/paraview/CMakeLists.txt.
-PIERCE_PLUGIN=$plugin PIERCE_MODEL=$model PIERCE_MARKER=$work/ready PIERCE_SHOT=$work/shot.png \
-PYTHONPATH="$here${PYTHONPATH:+:$PYTHONPATH}" \
-xvfb-run -a -s "-screen 0 1280x800x24 -noreset" bash -c '
-  paraview --dr --script="$0" &
-  gui=$!
-  for _ in $(seq 240); do [ -f "$PIERCE_MARKER" ] && break; sleep 0.5; done
-  [ -f "$PIERCE_MARKER" ] || { kill $gui; echo "make_screenshot: ParaView did not get ready" >&2; exit 1; }
-  sleep 8  # let the GUI finish laying out and painting
-  /usr/bin/python3 -c "from PIL import ImageGrab; import os; ImageGrab.grab().save(os.environ[\"PIERCE_SHOT\"])"
-  kill $gui
-  wait $gui || true
-' "$here/gui_thickness.py"
+xvfb-run -a -s "-screen 0 1280x800x24 -noreset" /usr/bin/python3 "$here/first_screen.py" \
+  --plugin-dir "$(dirname "$plugin")" --model "$model" --state "$work/state.pvsm" --shot "$work/shot.png"
 
 # Crop the black desktop around the window, keep the file small (palette PNG).
 /usr/bin/python3 - "$work/shot.png" "$out" <<'PY'
