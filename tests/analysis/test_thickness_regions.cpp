@@ -32,6 +32,9 @@ void check_ids(const ThicknessResult& r, const ThicknessOptions& o, const Scene&
   std::vector<std::size_t> count(thin + r.thick_regions.size(), 0);
   std::vector<double> extreme(count.size(), std::numeric_limits<double>::quiet_NaN());
   ASSERT_EQ(r.region.size(), r.size());
+  std::vector<std::vector<std::uint32_t>> weld(scene.geometries().size());
+  if (o.per == SampleAt::vertex)
+    for (std::size_t g = 0; g < weld.size(); ++g) weld[g] = analysis::weld_by_position(scene.geometry(std::uint32_t(g)).vertices);
   for (std::size_t i = 0; i < r.size(); ++i) {
     const double t = r.thickness[i];
     const bool is_thin = std::isfinite(t) && t < o.min_thickness;
@@ -53,7 +56,7 @@ void check_ids(const ThicknessResult& r, const ThicknessOptions& o, const Scene&
       EXPECT_LE(t, reg.thickness);
     }
     const std::uint32_t v = r.element[i];
-    count[std::size_t(id)] += o.per == SampleAt::face || analysis::weld_by_position(scene.geometry(r.solid[i]).vertices)[v] == v;
+    count[std::size_t(id)] += o.per == SampleAt::face || weld[r.solid[i]][v] == v;
     double& e = extreme[std::size_t(id)];
     if (std::isnan(e) || (is_thin ? t < e : t > e)) e = t;
   }
@@ -102,6 +105,18 @@ TEST_P(PocketFloors, EachThinFloorIsOneRegionWithItsMinimumAndArea) {
   expect_floor(r.thin_regions[0], kPockets[0], 0.10);
   expect_floor(r.thin_regions[1], kPockets[1], 0.10);
   EXPECT_TRUE(r.thick_regions.empty());
+}
+
+TEST_P(PocketFloors, FineMeshAreaComesFromTheSamples) {
+  // Grid steps of 0.2, below the finest refinement of a 10-wide floor: no rays are traced for
+  // the area, the samples share out their triangles.
+  const auto world = make_world({pocket_block(kBlock, kPockets, 0.2)});
+  ThicknessOptions o = options(1.5);
+  const ThicknessResult r = compute_thickness(world->accel, o);
+  check_ids(r, o, world->scene);
+  ASSERT_EQ(r.thin_regions.size(), 2u);
+  expect_floor(r.thin_regions[0], kPockets[0], 0.10);
+  expect_floor(r.thin_regions[1], kPockets[1], 0.10);
 }
 
 TEST_P(PocketFloors, AWallOfExactlyTheThresholdIsNotThin) {

@@ -353,6 +353,28 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
     if (inward == Vec3d{}) return;
     const std::int32_t own = region_on(topology, item.tri, want);
     auto& out = item_area[j];
+    auto credit = [&](std::int32_t r, double a) {
+      auto it = std::find_if(out.begin(), out.end(), [&](const auto& e) { return e.first == r; });
+      if (it == out.end()) out.emplace_back(r, a);
+      else it->second += a;
+    };
+    // A triangle no longer than the finest sub-triangle refinement would trace is sampled densely
+    // enough already: its samples share out its area (a corner's third each per vertex, all of
+    // it per face), with no rays traced.
+    const Vec3d v0 = geo.vertices[tri[0]], v1 = geo.vertices[tri[1]], v2 = geo.vertices[tri[2]];
+    if (longest_edge(v0, v1, v2) <= item.fine) {
+      const double area = tri_area(v0, v1, v2);
+      auto share = [&](std::uint32_t element, double part) {
+        const std::uint32_t row = topology.row_of[element];
+        if (row != kInvalidId && flag[row] == want) credit(res.region[row], part);
+      };
+      if (opts.per == SampleAt::face) {
+        share(item.tri, area);
+      } else {
+        for (auto v : tri) share(v, area / 3);
+      }
+      return;
+    }
     auto add = [&](const Sub& k, double t) {
       std::int32_t r = own;
       if (r < 0) {
@@ -361,14 +383,11 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
         if (at != kInvalidId) r = region_on(topology, at, want);
       }
       if (r < 0) r = std::int32_t(item.region);
-      const double a = tri_area(k.a, k.b, k.c);
-      auto it = std::find_if(out.begin(), out.end(), [&](const auto& e) { return e.first == r; });
-      if (it == out.end()) out.emplace_back(r, a);
-      else it->second += a;
+      credit(r, tri_area(k.a, k.b, k.c));
     };
     std::size_t rays = 0;
     w.subs.clear();
-    w.subs.push_back({geo.vertices[tri[0]], geo.vertices[tri[1]], geo.vertices[tri[2]], 0});
+    w.subs.push_back({v0, v1, v2, 0});
     while (!w.subs.empty()) {
       const Sub s = w.subs.back();
       w.subs.pop_back();

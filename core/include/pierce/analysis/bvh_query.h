@@ -91,8 +91,9 @@ void for_each_overlapping(const WideBvhd& bvh, const BBoxd& box, NodeStack<doubl
 // The same triangles as above, in double precision from `scene`, found on the float BVH built
 // from it (Accel::wide()), so that a query needs no double BVH. A float corner lies within
 // |x| * 2^-24 of the double one it rounds, so nodes are entered with `box` grown by twice that
-// for the scene's largest coordinate: every triangle whose double box overlaps `box` is reached,
-// then tested exactly. The calls come in the float BVH's order.
+// for the scene's largest coordinate: every triangle whose double box overlaps `box` is reached
+// (and its float box overlaps the grown one), then tested exactly. The calls come in the float
+// BVH's order.
 template <typename F>
 void for_each_overlapping(const Scene& scene, const WideBvhf& bvh, const BBoxd& box, NodeStack<float>& stack, F&& f) {
   const double grow = bvh.scene_max_abs * 0x1p-23 + double(std::numeric_limits<float>::denorm_min());
@@ -101,6 +102,9 @@ void for_each_overlapping(const Scene& scene, const WideBvhf& bvh, const BBoxd& 
   entry.hi = entry.hi + Vec3d{grow, grow, grow};
   auto enter = [&](const BBoxf& b) { return boxes_overlap(b, entry); };
   for_each_entered(bvh, stack, enter, [&](const Triangle<float>& tf) {
+    BBoxf fb;  // the float corners' box: it misses `entry` only if the double one misses `box`
+    fb.extend(tf.v0), fb.extend(tf.v1), fb.extend(tf.v2);
+    if (!boxes_overlap(fb, entry)) return;
     const Geometry& g = scene.geometry(tf.geom);
     const Tri& c = g.triangles[tf.prim];
     const Triangle<double> t{g.vertices[c[0]], g.vertices[c[1]], g.vertices[c[2]], tf.geom, tf.prim};
