@@ -53,8 +53,9 @@ void bind_hits(pyb::module_& m) {
         KernelOptions opts;
         opts.order.tie = tie_from_name(order);
         opts.epsilon_rel = epsilon_rel;
-        // Traced from the caller's arrays in place (converted once only if not float64); the
-        // arrays are held by `rays` until the call returns.
+        // Traced from the caller's arrays in place (converted once only if not float64), held by
+        // `rays` until the call returns. They are read without the GIL: a write to them from
+        // another thread meanwhile changes what is traced (a ray made bad then gets no hits).
         const RayArrays rays = ray_arrays(origins, directions, tmin, tmax);
         if (rays.size() > std::numeric_limits<std::uint32_t>::max())
           throw pyb::value_error("trace: at most 2^32-1 rays per call");
