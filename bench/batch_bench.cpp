@@ -21,6 +21,7 @@
 #include "bench_scenes.h"
 #include "bench_timing.h"
 #include "embree_reference.h"
+#include "pierce/io/ray_source.h"
 #include "pierce/kernel.h"
 
 namespace pierce::bench {
@@ -28,6 +29,7 @@ namespace {
 
 struct Options {
   std::vector<std::string> meshes;
+  std::string ray_spec;  // rays as `pierce hits --rays` takes them, instead of the scene's random ones
   std::size_t rays = 200000;
   int reps = 5;
   int threads = 1;
@@ -76,7 +78,11 @@ std::size_t reference_all_hits(const EmbreeReference& ref, const std::vector<Ray
   return n;
 }
 
-void bench_scene(const BenchScene& bs, const Options& o) {
+void bench_scene(BenchScene bs, const Options& o) {
+  if (!o.ray_spec.empty()) {
+    bs.rays = load_rays(o.ray_spec, bs.scene);
+    bs.description += "; rays " + o.ray_spec;
+  }
   const Accel accel(bs.scene);
   const EmbreeReference first(bs.scene, ReferenceUse::first_hit);
   const EmbreeReference filters(bs.scene, ReferenceUse::filters);
@@ -123,6 +129,9 @@ int run(int argc, char** argv) {
                "Embree code on the same random rays"};
   app.add_option("--mesh", o.meshes, "Model files to time (STL, OBJ, OFF, PLY); without one, gen::blob");
   app.add_option("--rays", o.rays, "Random rays per scene")->capture_default_str();
+  app.add_option("--ray-spec", o.ray_spec,
+                 "Rays as `pierce hits --rays` takes them (a CSV file, 'random:n=N,seed=S', 'grid:...') "
+                 "instead of random ones");
   app.add_option("--reps", o.reps, "Timed repetitions of every row (medians are printed)")->capture_default_str();
   app.add_option("--threads", o.threads, "Worker threads")->capture_default_str();
   app.add_option("--blob-subdivisions", o.blob_subdivisions, "Size of the default blob")->capture_default_str();

@@ -202,6 +202,11 @@ void collect_hits(HitIterator& it, const Ray& ray, std::size_t max_hits, std::ve
 
 bool trace_batch(const Accel& accel, KernelKind kind, std::span<const Ray> rays, std::size_t max_hits,
                  HitBatch& out, const KernelOptions& opts, const Progress& progress) {
+  return trace_batch(accel, kind, columns_of(rays), max_hits, out, opts, progress);
+}
+
+bool trace_batch(const Accel& accel, KernelKind kind, const RayColumns& rays, std::size_t max_hits,
+                 HitBatch& out, const KernelOptions& opts, const Progress& progress) {
   const std::size_t n = rays.size();
   out.offsets.assign(n + 1, 0);
   out.hits.clear();
@@ -210,19 +215,26 @@ bool trace_batch(const Accel& accel, KernelKind kind, std::span<const Ray> rays,
   struct Chunk {
     std::size_t first_ray, end_ray, first_hit;
   };
+  // The rays of a chunk are built from the columns into the worker's fixed buffer, kGrain at a
+  // time (TBB's chunks are about kGrain rays, sometimes more), and traced with one collect_each.
+  constexpr std::size_t kGrain = 256;
   struct Worker {
     HitIterator it;
     std::vector<Hit> hits;
     std::vector<Chunk> chunks;
+    std::array<Ray, kGrain> rays{};
   };
-  tbb::enumerable_thread_specific<Worker> workers([&] { return Worker{HitIterator(accel, kind, opts), {}, {}}; });
+  tbb::enumerable_thread_specific<Worker> workers([&] { return Worker{HitIterator(accel, kind, opts), {}, {}, {}}; });
   ProgressTracker tracker(n, progress);
-  constexpr std::size_t kGrain = 256;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
     if (tracker.stopped()) return;
     Worker& w = workers.local();
     w.chunks.push_back({r.begin(), r.end(), w.hits.size()});
-    w.it.collect_each(rays.subspan(r.begin(), r.size()), max_hits, w.hits, out.offsets.data() + r.begin() + 1);
+    for (std::size_t first = r.begin(); first < r.end(); first += kGrain) {
+      const std::size_t count = std::min(kGrain, r.end() - first);
+      for (std::size_t i = 0; i < count; ++i) w.rays[i] = rays[first + i];
+      w.it.collect_each({w.rays.data(), count}, max_hits, w.hits, out.offsets.data() + first + 1);
+    }
     tracker.add(r.size());
   });
   for (std::size_t i = 0; i < n; ++i) out.offsets[i + 1] += out.offsets[i];

@@ -53,7 +53,10 @@ void bind_hits(pyb::module_& m) {
         KernelOptions opts;
         opts.order.tie = tie_from_name(order);
         opts.epsilon_rel = epsilon_rel;
-        const std::vector<Ray> rays = make_rays(origins, directions, tmin, tmax);
+        // Traced from the caller's arrays in place (converted once only if not float64), held by
+        // `rays` until the call returns. They are read without the GIL: a write to them from
+        // another thread meanwhile changes what is traced (a ray made bad then gets no hits).
+        const RayArrays rays = ray_arrays(origins, directions, tmin, tmax);
         if (rays.size() > std::numeric_limits<std::uint32_t>::max())
           throw pyb::value_error("trace: at most 2^32-1 rays per call");
 
@@ -61,7 +64,7 @@ void bind_hits(pyb::module_& m) {
         PyScene::Use use(s);
         run_with_progress(progress, cancel, rays.size(), [&](ProgressState& st) {
           const Accel& accel = s.accel();
-          trace_batch(accel, kind, rays, max_hits, hits, opts, [&](std::size_t done, std::size_t) { return st.report(done); });
+          trace_batch(accel, kind, rays.columns, max_hits, hits, opts, [&](std::size_t done, std::size_t) { return st.report(done); });
         });
 
         pyb::array_t<HitRecord> out(static_cast<pyb::ssize_t>(hits.hits.size()));

@@ -79,6 +79,13 @@ pyb::array_t<double, pyb::array::c_style> as_points(const pyb::handle& obj, cons
   return a;
 }
 
+pyb::array as_point_rows(const pyb::handle& obj, const char* what) {
+  if (!pyb::isinstance<pyb::array_t<double>>(obj)) return as_points(obj, what);
+  auto a = pyb::reinterpret_borrow<pyb::array>(obj);
+  require_rows_of_3(a, what);
+  return a;
+}
+
 std::vector<Vec3d> to_vec3d(const pyb::array_t<double, pyb::array::c_style>& a) {
   std::vector<Vec3d> out(static_cast<std::size_t>(a.shape(0)));
   if (!out.empty()) std::memcpy(static_cast<void*>(out.data()), a.data(), out.size() * sizeof(Vec3d));

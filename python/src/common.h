@@ -17,6 +17,7 @@
 #include "pierce/kernel.h"
 #include "pierce/kernel_names.h"
 #include "pierce/progress.h"
+#include "pierce/ray_columns.h"
 #include "pierce/scene.h"
 #include "progress.h"
 
@@ -74,6 +75,10 @@ auto run_analysis(PyScene& s, const pyb::object& progress, CancelToken* cancel, 
 // input already is C-contiguous float64. `what` names the argument in error messages.
 pyb::array_t<double, pyb::array::c_style> as_points(const pyb::handle& obj, const char* what);
 
+// as_points, but a float64 array in native byte order is returned as it is, whatever its strides
+// (read it through its strides, e.g. as a Vec3Column); anything else is converted once.
+pyb::array as_point_rows(const pyb::handle& obj, const char* what);
+
 // Checked copy into Vec3d rows.
 std::vector<Vec3d> to_vec3d(const pyb::array_t<double, pyb::array::c_style>& a);
 
@@ -126,8 +131,19 @@ KernelKind kernel_from_name(const std::string& name);
 std::string default_kernel_name();
 TieOrder tie_from_name(const std::string& name);
 
-// Rays from (N, 3) origins and directions and a scalar or per-ray tmin/tmax; InputError names
-// the first bad ray (non-finite origin or direction, zero direction, NaN bounds).
+// Rays as columns over (N, 3) origins and directions and a scalar or per-ray tmin/tmax, checked
+// (ValueError/TypeError on shapes, InputError naming the first bad ray: non-finite origin or
+// direction, zero direction, NaN bounds). float64 arrays are read where they are, whatever their
+// strides; other array-likes are converted once and the copy is held here.
+struct RayArrays {
+  pyb::array origins, directions, tmin, tmax;  // what `columns` points into
+  RayColumns columns;
+  std::size_t size() const { return columns.size(); }
+};
+RayArrays ray_arrays(const pyb::handle& origins, const pyb::handle& directions, const pyb::handle& tmin,
+                     const pyb::handle& tmax);
+
+// ray_arrays' rays as a vector, for the analyses that take a list of Rays.
 std::vector<Ray> make_rays(const pyb::handle& origins, const pyb::handle& directions, const pyb::handle& tmin,
                            const pyb::handle& tmax);
 // (origins, directions, tmin, tmax) arrays of a ray list.

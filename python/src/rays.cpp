@@ -1,53 +1,55 @@
 // Ray batches between numpy arrays and pierce::Ray.
-#include <cmath>
-
 #include "common.h"
-#include "pierce/error.h"
+#include "pierce/ray_validation.h"
 
 namespace pierce::py {
 
 namespace {
 
-// A scalar or one value per ray.
-std::vector<double> per_ray(const pyb::handle& obj, std::size_t n, const char* what) {
-  auto a = pyb::array_t<double, pyb::array::c_style | pyb::array::forcecast>::ensure(obj);
-  if (!a) {
-    PyErr_Clear();
-    throw pyb::type_error(std::string(what) + " must be a number or an array of one number per ray");
+// A number (one value for every ray) or one value per ray; a float64 array is read where it is.
+DoubleColumn per_ray(const pyb::handle& obj, std::size_t n, const char* what, pyb::array& keep) {
+  if (pyb::isinstance<pyb::array_t<double>>(obj)) {
+    keep = pyb::reinterpret_borrow<pyb::array>(obj);
+  } else {
+    keep = pyb::array_t<double, pyb::array::forcecast>::ensure(obj);
+    if (!keep) {
+      PyErr_Clear();
+      throw pyb::type_error(std::string(what) + " must be a number or an array of one number per ray");
+    }
   }
-  if (a.ndim() == 0) return std::vector<double>(n, *a.data());
-  if (a.ndim() != 1 || static_cast<std::size_t>(a.shape(0)) != n)
+  if (keep.ndim() == 0) return DoubleColumn::constant(DoubleColumn::per_ray(keep.data())[0]);
+  if (keep.ndim() != 1 || static_cast<std::size_t>(keep.shape(0)) != n)
     throw pyb::value_error(std::string(what) + " must be a number or have shape (" + std::to_string(n) + ",)");
-  return std::vector<double>(a.data(), a.data() + n);
+  return DoubleColumn::per_ray(keep.data(), keep.strides(0));
 }
+
+Vec3Column rows(const pyb::array& a) { return {a.data(), a.strides(0), a.strides(1)}; }
 
 }  // namespace
 
+RayArrays ray_arrays(const pyb::handle& origins, const pyb::handle& directions, const pyb::handle& tmin,
+                     const pyb::handle& tmax) {
+  RayArrays r;
+  r.origins = as_point_rows(origins, "origins");
+  r.directions = as_point_rows(directions, "directions");
+  if (r.origins.shape(0) != r.directions.shape(0))
+    throw pyb::value_error("origins and directions must have the same length, got " +
+                           std::to_string(r.origins.shape(0)) + " and " + std::to_string(r.directions.shape(0)));
+  const std::size_t n = static_cast<std::size_t>(r.origins.shape(0));
+  r.columns.count = n;
+  r.columns.origins = rows(r.origins);
+  r.columns.directions = rows(r.directions);
+  r.columns.tmin = per_ray(tmin, n, "tmin", r.tmin);
+  r.columns.tmax = per_ray(tmax, n, "tmax", r.tmax);
+  require_valid_rays(r.columns);
+  return r;
+}
+
 std::vector<Ray> make_rays(const pyb::handle& origins, const pyb::handle& directions, const pyb::handle& tmin,
                            const pyb::handle& tmax) {
-  const auto o = as_points(origins, "origins");
-  const auto d = as_points(directions, "directions");
-  if (o.shape(0) != d.shape(0))
-    throw pyb::value_error("origins and directions must have the same length, got " + std::to_string(o.shape(0)) +
-                           " and " + std::to_string(d.shape(0)));
-  const std::size_t n = static_cast<std::size_t>(o.shape(0));
-  const std::vector<double> lo = per_ray(tmin, n, "tmin");
-  const std::vector<double> hi = per_ray(tmax, n, "tmax");
-  std::vector<Ray> rays(n);
-  const double* po = o.data();
-  const double* pd = d.data();
-  for (std::size_t i = 0; i < n; ++i) {
-    Ray& r = rays[i];
-    r.org = {po[3 * i], po[3 * i + 1], po[3 * i + 2]};
-    r.dir = {pd[3 * i], pd[3 * i + 1], pd[3 * i + 2]};
-    r.tmin = lo[i];
-    r.tmax = hi[i];
-    const std::string where = "ray " + std::to_string(i);
-    if (!all_finite(r.org)) throw InputError(where + ": origin is not finite");
-    if (!all_finite(r.dir)) throw InputError(where + ": direction is not finite");
-    if (r.dir == Vec3d{}) throw InputError(where + ": direction is zero");
-    if (std::isnan(r.tmin) || std::isnan(r.tmax)) throw InputError(where + ": tmin/tmax is NaN");
-  }
+  const RayArrays arrays = ray_arrays(origins, directions, tmin, tmax);
+  std::vector<Ray> rays(arrays.size());
+  for (std::size_t i = 0; i < rays.size(); ++i) rays[i] = arrays.columns[i];
   return rays;
 }
 

@@ -94,6 +94,110 @@ class TraceTest(unittest.TestCase):
         self.assertEqual(pierce.trace(s, [[0.5, 0.5, -1]], [[0, 0, 1]]).total, 4)
 
 
+def assert_same_hits(test, want, got):
+    """Same offsets and every record field bit for bit (floats compared as their bits)."""
+    np.testing.assert_array_equal(got.offsets, want.offsets)
+    for f in want.records.dtype.names:
+        a, b = want.records[f], got.records[f]
+        if a.dtype.kind == "f":
+            a, b = a.view(f"u{a.dtype.itemsize}"), b.view(f"u{b.dtype.itemsize}")
+        np.testing.assert_array_equal(b, a, err_msg=f)
+    test.assertGreater(want.total, len(want))
+
+
+class ArrayInputTest(unittest.TestCase):
+    """Rays are read from the caller's arrays through their strides; any array-like is converted once."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.scene = plates_scene(6)
+        cls.scene.add(pierce.gen.box((0.3, 0.3, 0.1), (0.7, 0.7, 0.5), "box"))
+        rng = np.random.default_rng(3)
+        n = 5000  # many chunks per thread
+        # Half on a grid through the plates' edges, half random through the scene.
+        grid = np.column_stack([np.round(rng.uniform(0, 1, n // 2) * 8) / 8, rng.uniform(0, 1, n // 2),
+                                np.full(n // 2, -1.0)])
+        cls.org = np.vstack([grid, rng.uniform(-0.5, 1.5, (n - n // 2, 3))])
+        cls.dir = np.vstack([np.column_stack([rng.uniform(-0.2, 0.2, n // 2), np.zeros(n // 2), np.ones(n // 2)]),
+                             rng.normal(size=(n - n // 2, 3))])
+        cls.tmin = rng.uniform(0.0, 0.8, n)
+        cls.tmax = rng.uniform(1.2, 4.0, n)
+
+    def trace(self, org, d, **kw):
+        return pierce.trace(self.scene, org, d, **kw)
+
+    def test_strided_and_converted_inputs_give_the_same_hits(self):
+        want = self.trace(self.org, self.dir, tmin=self.tmin, tmax=self.tmax)
+        n = len(self.org)
+        wide = np.zeros((n, 6))
+        wide[:, ::2] = self.org  # component stride 16 bytes
+        reversed_dir = self.dir[::-1].copy()[::-1]  # negative row stride
+        bounds = np.zeros((2, n))
+        bounds[0], bounds[1] = self.tmin, self.tmax
+        inputs = {
+            "strided": (wide[:, ::2], reversed_dir, bounds[0, :], bounds[1, :]),
+            "column strided": (wide[:, ::2], reversed_dir, bounds.T[:, 0], bounds.T[:, 1]),
+            "fortran order": (np.asfortranarray(self.org), np.asfortranarray(self.dir), self.tmin, self.tmax),
+            "big endian": (self.org.astype(">f8"), self.dir.astype(">f8"), self.tmin.astype(">f8"), self.tmax),
+            "lists": (self.org.tolist(), self.dir.tolist(), self.tmin.tolist(), self.tmax.tolist()),
+            "read-only": (np.lib.stride_tricks.as_strided(self.org, writeable=False), self.dir, self.tmin, self.tmax),
+        }
+        self.assertFalse(wide[:, ::2].flags.c_contiguous or reversed_dir.flags.c_contiguous)
+        for name, (o, d, lo, hi) in inputs.items():
+            with self.subTest(input=name):
+                assert_same_hits(self, want, self.trace(o, d, tmin=lo, tmax=hi))
+        with self.subTest(input="float32"):
+            o32, d32 = self.org.astype(np.float32), self.dir.astype(np.float32)
+            assert_same_hits(self, self.trace(o32.astype(float), d32.astype(float)), self.trace(o32, d32))
+
+    def test_every_kernel_and_max_hits_on_strided_input(self):
+        wide = np.zeros((len(self.org), 6))
+        wide[:, 1::2] = self.org
+        for k in pierce.kernels(include_double=True):
+            for max_hits in (0, 2):
+                with self.subTest(kernel=k, max_hits=max_hits):
+                    assert_same_hits(self, self.trace(self.org, self.dir, kernel=k, max_hits=max_hits, tmax=self.tmax),
+                                     self.trace(wide[:, 1::2], self.dir, kernel=k, max_hits=max_hits,
+                                                tmax=self.tmax[::-1].copy()[::-1]))
+
+    def test_one_value_for_every_ray_equals_that_value_per_ray(self):
+        n = len(self.org)
+        want = self.trace(self.org, self.dir, tmin=np.full(n, 0.25), tmax=np.full(n, 2.5))
+        assert_same_hits(self, want, self.trace(self.org, self.dir, tmin=0.25, tmax=2.5))
+        assert_same_hits(self, want, self.trace(self.org, self.dir, tmin=np.float32(0.25), tmax=np.array(2.5)))
+        assert_same_hits(self, want, self.trace(self.org, self.dir, tmin=np.broadcast_to(0.25, (n,)), tmax=2.5))
+
+    def test_inputs_are_not_changed(self):
+        org, d = self.org.copy(), self.dir.copy()
+        self.trace(org, d, tmin=self.tmin, tmax=self.tmax)
+        np.testing.assert_array_equal(org, self.org)
+        np.testing.assert_array_equal(d, self.dir)
+
+    def test_bad_rays_in_strided_input_are_named(self):
+        wide = np.zeros((40, 6))
+        wide[:, ::2] = [0.5, 0.5, -1.0]
+        dirs = np.tile([0.0, 0.0, 1.0], (40, 1))
+        dirs[17] = [-0.0, 0.0, -0.0]
+        dirs[30] = 0.0
+        with self.assertRaisesRegex(pierce.InputError, "^ray 17: direction is zero$"):
+            self.trace(wide[:, ::2], dirs[::-1][::-1])
+        dirs[17] = [0.0, 0.0, 1.0]
+        wide[3, 2] = np.nan
+        with self.assertRaisesRegex(pierce.InputError, "^ray 3: origin is not finite$"):
+            self.trace(wide[:, ::2], dirs)
+        wide[3, 2] = 0.5
+        tmax = np.full((40, 2), 3.0)
+        tmax[9, 1] = np.nan
+        with self.assertRaisesRegex(pierce.InputError, "^ray 9: tmin/tmax is NaN$"):
+            self.trace(wide[:, ::2], dirs, tmax=tmax[:, 1])
+        with self.assertRaisesRegex(pierce.InputError, "^ray 30: direction is zero$"):
+            self.trace(wide[:, ::2], dirs)
+        with self.assertRaisesRegex(ValueError, r"origins must have shape \(N, 3\), got \(40, 2\)"):
+            self.trace(wide[:, ::3], dirs)
+        with self.assertRaisesRegex(ValueError, r"tmin must be a number or have shape \(40,\)"):
+            self.trace(wide[:, ::2], dirs, tmin=tmax)
+
+
 class ProgressAndCancelTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):

@@ -19,6 +19,7 @@
 #include "pierce/kernels/queue.h"
 #include "pierce/kernels/restart.h"
 #include "pierce/progress.h"
+#include "pierce/ray_columns.h"
 #include "pierce/wide_bvh.h"
 
 namespace pierce {
@@ -124,10 +125,15 @@ class HitIterator {
 void collect_hits(HitIterator& it, const Ray& ray, std::size_t max_hits, std::vector<Hit>& out);
 
 // Runs many rays on all cores; every ray's hits (up to max_hits, 0 = all) go into one HitBatch,
-// identical whatever the thread count. Each thread appends to its own buffer, and the buffers are
-// merged once: nothing is allocated per ray. `progress(done, total)` is called from worker
-// threads with the number of rays finished so far; returning false cancels (the rays not traced
-// get no hits) and the function returns false.
+// identical whatever the thread count. The rays are read from their columns where the caller
+// keeps them: each thread builds the rays of a chunk in its own fixed buffer and traces them with
+// one collect_each. Each thread appends to its own hit buffer, and the buffers are merged once:
+// nothing is allocated per ray. `progress(done, total)` is called from worker threads with the
+// number of rays finished so far; returning false cancels (the rays not traced get no hits) and
+// the function returns false.
+bool trace_batch(const Accel& accel, KernelKind kind, const RayColumns& rays, std::size_t max_hits,
+                 HitBatch& out, const KernelOptions& opts = {}, const Progress& progress = {});
+// trace_batch on columns_of(rays): the same HitBatch.
 bool trace_batch(const Accel& accel, KernelKind kind, std::span<const Ray> rays, std::size_t max_hits,
                  HitBatch& out, const KernelOptions& opts = {}, const Progress& progress = {});
 
