@@ -115,6 +115,13 @@ struct Near {
   Vec3d on_self, on_other;
 };
 
+// Nearer, or as near with the lexicographically smaller points: one closest pair whatever the
+// order in which the candidates come.
+bool nearer(const Near& x, const Near& y) {
+  return std::tuple(x.dist2, x.on_self.x, x.on_self.y, x.on_self.z, x.on_other.x, x.on_other.y, x.on_other.z) <
+         std::tuple(y.dist2, y.on_self.x, y.on_self.y, y.on_self.z, y.on_other.x, y.on_other.y, y.on_other.z);
+}
+
 void corners(const Geometry& g, std::uint32_t p, Vec3d out[3]) {
   for (int k = 0; k < 3; ++k) out[k] = g.vertices[g.triangles[p][k]];
 }
@@ -196,16 +203,16 @@ struct PairsWorker {
 
 // For every triangle, points in other solids within distance `d` (strictly), enough for two
 // exact minima: the triangle's distance to the nearest other solid (the least of its entries),
-// and each pair's distance, measured from its lower solid's triangles (the least of their entries
-// for the higher solid, and the first triangle that reaches it, holds the pair's points).
+// and each pair's distance and points, measured from its lower solid's triangles (the nearest of
+// their entries for the higher solid).
 // Triangle i is at tri_offset[g] + p. The float BVH is queried once per leaf block and solid, with
 // the box of the block's triangles of that solid grown by d (for_each_overlapping's rule), and
 // the subtrees of that solid skipped. Each triangle measures exactly the candidates whose lower
 // bound (boxes, then either triangle's plane) lies below d, nearest bound first, while the bound
 // can still reach the triangle's nearest so far or, for a higher solid, the least distance this
-// thread has seen for the pair: a candidate at either minimum is never skipped. Of equally near
-// points in one solid the lexicographically smallest pair is kept, so neither minimum nor its
-// points depend on the BVH's layout, the order of the candidates or the threads.
+// thread has seen for the pair: a candidate at either minimum is never skipped. Entries keep the
+// nearer() points, so neither minimum nor its points depend on the BVH's layout, the order of
+// the candidates or the threads.
 bool nearest_per_triangle(const Accel& accel, const std::vector<std::size_t>& tri_offset, double d,
                           std::vector<std::vector<Near>>& near, const Progress& progress) {
   const Scene& scene = accel.scene();
@@ -291,9 +298,7 @@ bool nearest_per_triangle(const Accel& accel, const std::vector<std::size_t>& tr
           const Near found{k.geom, td.dist2, td.on_a, td.on_b};
           if (it == mine.end()) {
             mine.push_back(found);
-          } else if (std::tuple(td.dist2, td.on_a.x, td.on_a.y, td.on_a.z, td.on_b.x, td.on_b.y, td.on_b.z) <
-                     std::tuple(it->dist2, it->on_self.x, it->on_self.y, it->on_self.z, it->on_other.x,
-                                it->on_other.y, it->on_other.z)) {
+          } else if (nearer(found, *it)) {
             *it = found;
           }
         }
@@ -418,7 +423,7 @@ SolidPairReport classify_solid_pairs(const Accel& accel, const CoplanarReport& c
           if (x.other < g) continue;  // the pair is measured from its lower solid's triangles
           auto [it, fresh] = nearest.try_emplace({g, x.other});
           SolidPair& s = it->second;
-          if (fresh || x.dist2 < s.gap) {
+          if (fresh || nearer(x, Near{x.other, s.gap, s.point, s.point_b})) {
             s.solid_a = g, s.solid_b = x.other;
             s.kind = PairKind::clearance;
             s.gap = x.dist2;  // squared until the end

@@ -13,7 +13,8 @@
 //    overlapping triangle pair (coplanar.h, exact predicates, so it holds however each side's face
 //    is tessellated), or a ray crossing from one into the other at a shared surface. gap = 0.
 //  - clearance: neither, and the smallest distance between their triangles is below D (strictly):
-//    `gap` is that distance, `point` (on solid_a) and `point_b` (on solid_b) the closest points.
+//    `gap` is that distance, `point` (on solid_a) and `point_b` (on solid_b) the closest points
+//    (of equally near pairs, the lexicographically smallest).
 //    Distances are triangle-triangle distances computed in double precision, candidates pruned with
 //    box queries on the scene's double BVH (each triangle's box grown by D). Solids meeting only
 //    along an edge or at a point have gap 0 and are reported as clearance when D > 0.
