@@ -286,7 +286,14 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
         for (std::uint32_t nb : t.around_vertex(v))
           if (std::uint32_t& l = listed[tri_base[k] + nb]; l != r) l = std::uint32_t(r), tris.push_back(nb);
     std::vector<std::uint32_t>().swap(seeds[r]);
-    std::sort(tris.begin(), tris.end());
+    // In triangle order: sorted, or for a region over much of its solid, read off the marks.
+    if (tris.size() * 8 < geo.triangles.size()) {
+      std::sort(tris.begin(), tris.end());
+    } else {
+      tris.clear();
+      for (std::uint32_t tri = 0; tri < geo.triangles.size(); ++tri)
+        if (listed[tri_base[k] + tri] == r) tris.push_back(tri);
+    }
     for (std::uint32_t tri : tris) {
       std::int32_t& o = own[tri_base[k] + tri];
       if (o >= 0) continue;
