@@ -13,6 +13,7 @@
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Edge.hxx>
+#include <TopoDS_Vertex.hxx>
 #include <Standard_Failure.hxx>
 #include <gp_Lin.hxx>
 #include <gp_Pnt2d.hxx>
@@ -28,6 +29,7 @@
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 #include <tbb/task_arena.h>
 
 #include "cad_faces.h"
@@ -276,11 +278,96 @@ void clip_to_prism(const PatchPrism& p, Vec3d org, Vec3d dir, double& ta, double
 
 }  // namespace
 
+// Per geometry, mesh_band(), measured on first use.
+struct CadSurfaces::MeshBands {
+  struct OfGeom {
+    std::once_flag built;
+    double band = std::numeric_limits<double>::infinity();
+  };
+  explicit MeshBands(std::size_t geometries) : geoms(std::make_unique<OfGeom[]>(geometries)) {}
+  static double measure(const CadLink& l);
+  std::unique_ptr<OfGeom[]> geoms;
+};
+
+namespace {
+
+// The largest distance between triangle `uv`'s chord and its exact patch on face `f`, sampled at
+// the chord's edge midpoints and centre (a smooth patch deviates most from its chord about there).
+double chord_deviation(const CadFaces::Face& f, const std::array<double, 6>& uv) {
+  static constexpr double kBary[4][3] = {{0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5}, {1 / 3.0, 1 / 3.0, 1 / 3.0}};
+  const Geom_Surface& surf = *f.surface;
+  gp_Pnt c[3];
+  for (int k = 0; k < 3; ++k) c[k] = surf.Value(uv[std::size_t(2 * k)], uv[std::size_t(2 * k + 1)]);
+  double deviation = 0;
+  for (const auto& b : kBary) {
+    const double u = b[0] * uv[0] + b[1] * uv[2] + b[2] * uv[4], v = b[0] * uv[1] + b[1] * uv[3] + b[2] * uv[5];
+    const gp_XYZ chord = c[0].XYZ() * b[0] + c[1].XYZ() * b[1] + c[2].XYZ() * b[2];
+    deviation = std::max(deviation, surf.Value(u, v).XYZ().Subtracted(chord).Modulus());
+  }
+  return deviation;
+}
+
+}  // namespace
+
+double CadSurfaces::MeshBands::measure(const CadLink& l) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  if (l.check.folded > 0) return kInf;  // a fold turns the mesh inside out there
+  const CadFaces& faces = *l.faces;
+  std::vector<std::uint8_t> planar(faces.faces.size());
+  for (std::size_t f = 0; f < planar.size(); ++f)
+    planar[f] = GeomAdaptor_Surface(faces.faces[f].surface).GetType() == GeomAbs_Plane;
+  // Isolated, as HiddenFaces::build: this runs inside the thickness loop's parallel_for.
+  const double deviation = tbb::this_task_arena::isolate([&] {
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, l.face.size(), 1024), 0.0,
+        [&](const tbb::blocked_range<std::size_t>& range, double acc) {
+          for (std::size_t t = range.begin(); t != range.end(); ++t) {
+            if (planar[l.face[t]]) continue;  // a plane's patch is its chord
+            try {
+              acc = std::max(acc, chord_deviation(faces.faces[l.face[t]], l.uv[t]));
+            } catch (const Standard_Failure&) {
+              acc = kInf;  // the surface cannot be evaluated there: the mesh may lie anywhere
+            }
+            if (!(acc <= kInf)) acc = kInf;  // NaN
+          }
+          return acc;
+        },
+        [](double a, double b) { return std::max(a, b); });
+  });
+  double tolerance = 0;
+  for (const TopAbs_ShapeEnum kind : {TopAbs_FACE, TopAbs_EDGE, TopAbs_VERTEX})
+    for (TopExp_Explorer ex(faces.shape, kind); ex.More(); ex.Next()) {
+      const TopoDS_Shape& sh = ex.Current();
+      const double tol = kind == TopAbs_FACE   ? BRep_Tool::Tolerance(TopoDS::Face(sh))
+                         : kind == TopAbs_EDGE ? BRep_Tool::Tolerance(TopoDS::Edge(sh))
+                                               : BRep_Tool::Tolerance(TopoDS::Vertex(sh));
+      tolerance = std::max(tolerance, tol);
+    }
+  const ShapeScale scale = scale_of(faces.shape);
+  const double band = 2 * deviation + 2 * tolerance + 1e-9 * (scale.size + scale.max_abs);
+  return std::isfinite(band) ? band : kInf;
+}
+
+double CadSurfaces::mesh_band(std::uint32_t geom) const {
+  if (!covers(geom)) return std::numeric_limits<double>::infinity();
+  MeshBands::OfGeom& b = bands_->geoms[geom];
+  std::call_once(b.built, [&] {
+    try {
+      b.band = MeshBands::measure(links_[geom]);
+    } catch (const Standard_Failure&) {
+      b.band = std::numeric_limits<double>::infinity();
+    }
+  });
+  return b.band;
+}
+
 CadSurfaces::~CadSurfaces() = default;
 
-std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin) const {
+std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin,
+                                              const analysis::MeshSide* mesh) const {
   const CadLink& l = links_.at(geom);
   if (l.empty() || l.faces->shape.IsNull()) return std::nullopt;
+  const double band = mesh ? mesh_band(geom) : std::numeric_limits<double>::infinity();
   try {
     auto& x = intersectors_->per_thread.local()[geom];
     if (!x) {
@@ -316,11 +403,19 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
     // classifying the line between it and the next crossing: OpenCASCADE's transitions cannot be
     // trusted where the line runs in a face (a vertex sample on a rim, down the face below it: it
     // reports a crossing, "out" through the face's interior, every 1e-4 along it). Beyond the last
-    // crossing the line is outside.
+    // crossing the line is outside. A point farther than `band` from the mesh lies on the same
+    // side of the mesh and of the B-rep (the mesh deforms into the B-rep within the band without
+    // passing it): there the mesh's winding number answers, and OpenCASCADE's classifier (a
+    // line intersection of the whole solid per point) is asked only in the band.
     for (std::size_t i = 0; i < crossings.size(); ++i) {
       if (i + 1 == crossings.size()) return crossings[i];
       const double mid = 0.5 * (crossings[i] + crossings[i + 1]);
       if (mid - crossings[i] <= x->tolerance) continue;  // the same crossing, reported twice
+      const analysis::MeshSide::Side side = std::isfinite(band) && mid - crossings[i] > band
+                                                ? mesh->side(geom, org + dir * mid, dir, band)
+                                                : analysis::MeshSide::unknown;
+      if (side == analysis::MeshSide::outside) return crossings[i];
+      if (side == analysis::MeshSide::inside) continue;
       x->inside.Perform(line.Location().Translated(gp_Vec(line.Direction()) * mid), x->tolerance);
       if (x->inside.State() == TopAbs_OUT) return crossings[i];
     }
@@ -334,7 +429,8 @@ CadSurfaces::CadSurfaces(std::vector<CadLink> links)
     : links_(std::move(links)),
       intersectors_(std::make_unique<Intersectors>()),
       classifiers_(std::make_unique<Classifiers>(links_)),
-      hidden_(std::make_unique<HiddenFaces>(links_.size())) {
+      hidden_(std::make_unique<HiddenFaces>(links_.size())),
+      bands_(std::make_unique<MeshBands>(links_.size())) {
   folded_.resize(links_.size());
   for (std::size_t g = 0; g < links_.size(); ++g) {
     const CadLink& l = links_[g];
