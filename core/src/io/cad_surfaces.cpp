@@ -99,12 +99,15 @@ struct Start {
 struct CadSurfaces::Intersectors {
   struct Face {
     Bnd_Box box;  // the face's, widened: every point its intersector finds lies in it
+    Vec3d lo, hi;  // the box's corners
     std::unique_ptr<IntCurvesFace_Intersector> line;
   };
   struct OfGeom {
     std::vector<Face> faces;  // every face of the shape, in TopExp_Explorer order
     BRepClass3d_SolidClassifier inside;
+    bool inside_loaded = false;  // `inside` is loaded on first use: the mesh answers most points
     double tolerance = 0;
+    double slack = 0;  // far above the rounding of a point's coordinates
   };
   tbb::enumerable_thread_specific<std::map<std::uint32_t, std::unique_ptr<OfGeom>>> per_thread;
 };
@@ -372,8 +375,10 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
     auto& x = intersectors_->per_thread.local()[geom];
     if (!x) {
       x = std::make_unique<Intersectors::OfGeom>();
-      const double size = scale_of(l.faces->shape).size;
+      const ShapeScale scale = scale_of(l.faces->shape);
+      const double size = scale.size;
       x->tolerance = 1e-9 * size;
+      x->slack = 1e-9 * (size + scale.max_abs);
       for (TopExp_Explorer ex(l.faces->shape, TopAbs_FACE); ex.More(); ex.Next()) {
         const TopoDS_Face& face = TopoDS::Face(ex.Current());
         Intersectors::Face f;
@@ -382,16 +387,26 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
         for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next())
           tol = std::max(tol, BRep_Tool::Tolerance(TopoDS::Edge(e.Current())));
         f.box.Enlarge(10 * tol + 1e-6 * size);  // points ON an edge lie within its tolerance
+        f.box.Get(f.lo.x, f.lo.y, f.lo.z, f.hi.x, f.hi.y, f.hi.z);
         f.line = std::make_unique<IntCurvesFace_Intersector>(face, x->tolerance);
         x->faces.push_back(std::move(f));
       }
-      x->inside.Load(l.faces->shape);
     }
     const gp_Lin line(gp_Pnt(org.x, org.y, org.z), gp_Dir(dir.x, dir.y, dir.z));
+    // A box the half-line beyond tmin misses holds no crossing there: the line misses it, or
+    // leaves it before tmin, through a side beyond which the point at tmin then lies.
+    const Vec3d at = org + dir * tmin;
+    auto behind = [&](const Intersectors::Face& f) {
+      for (std::size_t k = 0; k < 3; ++k) {
+        if (dir[k] > 0 && at[k] > f.hi[k] + x->slack) return true;
+        if (dir[k] < 0 && at[k] < f.lo[k] - x->slack) return true;
+      }
+      return false;
+    };
     // Where the line crosses a face (touching one, tangent to it, is no crossing), nearest first.
     std::vector<double> crossings;
     for (Intersectors::Face& f : x->faces) {
-      if (f.box.IsOut(line)) continue;
+      if (behind(f) || f.box.IsOut(line)) continue;
       f.line->Perform(line, tmin, std::numeric_limits<double>::infinity());
       if (!f.line->IsDone()) return std::nullopt;
       for (Standard_Integer i = 1; i <= f.line->NbPnt(); ++i)
@@ -416,6 +431,7 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
                                                 : analysis::MeshSide::unknown;
       if (side == analysis::MeshSide::outside) return crossings[i];
       if (side == analysis::MeshSide::inside) continue;
+      if (!x->inside_loaded) x->inside.Load(l.faces->shape), x->inside_loaded = true;
       x->inside.Perform(line.Location().Translated(gp_Vec(line.Direction()) * mid), x->tolerance);
       if (x->inside.State() == TopAbs_OUT) return crossings[i];
     }
