@@ -65,14 +65,16 @@ int run(int argc, char** argv) {
   app.add_option("--threads", threads, "Threads of the end-to-end run (load and B-rep thickness)")
       ->check(CLI::Range(1, 1024));
   app.add_flag("--quick", quick, "One repetition, coarse meshes (smoke run)");
-  std::string only;
+  std::string only, keep;
   app.add_option("--model", only, "Run only the model of this name");
+  app.add_option("--keep", keep, "Write the models into this directory and keep them (for `pierce thickness`)");
   CLI11_PARSE(app, argc, argv);
   if (quick) reps = 1;
   Message::DefaultMessenger()->ChangePrinters().Clear();  // the STEP writer's statistics
 
   const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("pierce_bench_cad_refine_" + std::to_string(::getpid()));
+      !keep.empty() ? std::filesystem::path(keep)
+                    : std::filesystem::temp_directory_path() / ("pierce_bench_cad_refine_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const Model models[] = {{"bent_sheet", test_models::bent_sheet, nullptr},
                           {"filleted_box", test_models::filleted_box, nullptr},
@@ -179,7 +181,7 @@ int run(int argc, char** argv) {
     if (brep.solids.empty() || valid == 0) status = 1;  // nothing measured: broken, not slow
   }
   std::error_code ec;
-  std::filesystem::remove_all(dir, ec);
+  if (keep.empty()) std::filesystem::remove_all(dir, ec);
   std::printf("CPU time stolen by the hypervisor during the run: %s\n", steal.percent().c_str());
   return status;
 }

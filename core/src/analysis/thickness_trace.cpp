@@ -89,6 +89,40 @@ struct Measured {
   ThicknessStatus status = ThicknessStatus::ok;
 };
 
+// MeshSide on the scene's mesh, with a worker's traversal state: the triangles near the point are
+// found on the float BVH and measured in double precision, the winding number is counted along
+// the ray by the (exact) thickness kernel.
+class SceneMeshSide final : public MeshSide {
+ public:
+  SceneMeshSide(const Accel& accel, HitIterator& it, NodeStack<float>& stack) : accel_(accel), it_(it), stack_(stack) {}
+
+  Side side(std::uint32_t geom, Vec3d p, Vec3d dir, double band) const override {
+    // The kernel may trace the float copy of the mesh: it lies within |x| 2^-24 of the double one.
+    const double reach = band + accel_.wide().scene_max_abs * 0x1p-23;
+    BBoxd box;
+    box.lo = p - Vec3d{reach, reach, reach};
+    box.hi = p + Vec3d{reach, reach, reach};
+    bool near = false;
+    for_each_overlapping(accel_.scene(), accel_.wide(), box, stack_, [&](const Triangle<double>& t) {
+      if (near || t.geom != geom) return;
+      const Vec3d q = closest_point_on_triangle(p, t.v0, t.v1, t.v2);
+      near = !(dot(q - p, q - p) > reach * reach);
+    });
+    if (near) return unknown;
+    it_.begin(Ray{p, dir, 0, std::numeric_limits<double>::infinity()});
+    int winding = 0;  // leaves minus enters beyond p: 1 inside, 0 outside a closed mesh
+    Hit h;
+    while (it_.next(h))
+      if (h.geom == geom) winding += h.enter ? -1 : 1;
+    return winding == 1 ? inside : winding == 0 ? outside : unknown;
+  }
+
+ private:
+  const Accel& accel_;
+  HitIterator& it_;
+  NodeStack<float>& stack_;
+};
+
 }  // namespace
 
 // The ray starts on the solid's surface heading inward, so it is inside (depth 1) from the
@@ -151,8 +185,10 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
     HitIterator it;
     NodeStack<double> stack;
     std::vector<std::pair<double, double>> lens;
+    NodeStack<float> fstack;
   };
-  tbb::enumerable_thread_specific<Worker> workers([&] { return Worker{HitIterator(accel, opts.kernel, kopts), {}, {}}; });
+  tbb::enumerable_thread_specific<Worker> workers(
+      [&] { return Worker{HitIterator(accel, opts.kernel, kopts), {}, {}, {}}; });
 
   // One ray of a sample: meshes as ray_exit_distance; CAD samples traced on the mesh from the
   // mesh point, then the exit refined on the exact face of the triangle crossed.
@@ -164,9 +200,12 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
     const double tm = exit_impl<true>(w.it, s.geom, c.mesh_point, dir, opts.max_distance, tie, 0, &rec);
     const std::span<const std::uint8_t> folded = folded_flags(opts, s.geom);
     const bool met_fold = !folded.empty() && rec.first_prim != kInvalidId && folded[rec.first_prim] != 0;
-    // Where the mesh gives no answer, the exact B-rep is asked directly (slow, rare).
+    // Where the mesh gives no answer, the exact B-rep is asked directly (slow, rare); the mesh
+    // of a closed solid classifies the points on the way that lie clear of it.
+    const SceneMeshSide mesh_side(accel, w.it, w.fstack);
+    const MeshSide* mesh = c.closed ? &mesh_side : nullptr;
     auto exact_fallback = [&]() -> Measured {
-      const std::optional<double> t = opts.exact->exact_exit(s.geom, c.point, dir, tie);
+      const std::optional<double> t = opts.exact->exact_exit(s.geom, c.point, dir, tie, mesh);
       if (!t) return {kNaN, ThicknessStatus::tessellation};
       if (*t > opts.max_distance) return {kNaN, ThicknessStatus::no_exit};
       return {*t};
@@ -192,7 +231,7 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
     // hair inside its circle, between the chords and the arc).
     if (x->on_boundary || !(std::abs(dot(x->normal, dir)) >= kGrazingCos) ||
         opts.exact->hidden_crossing(s.geom, c.point, dir, x->t, c.face, opts.exact->face_of(s.geom, rec.prim))) {
-      const std::optional<double> first = opts.exact->exact_exit(s.geom, c.point, dir, tie);
+      const std::optional<double> first = opts.exact->exact_exit(s.geom, c.point, dir, tie, mesh);
       if (first) t = *first;
     }
     if (t > opts.max_distance) return {kNaN, ThicknessStatus::no_exit};

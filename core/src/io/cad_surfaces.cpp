@@ -13,6 +13,7 @@
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Edge.hxx>
+#include <TopoDS_Vertex.hxx>
 #include <Standard_Failure.hxx>
 #include <gp_Lin.hxx>
 #include <gp_Pnt2d.hxx>
@@ -28,6 +29,7 @@
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 #include <tbb/task_arena.h>
 
 #include "cad_faces.h"
@@ -97,12 +99,15 @@ struct Start {
 struct CadSurfaces::Intersectors {
   struct Face {
     Bnd_Box box;  // the face's, widened: every point its intersector finds lies in it
+    Vec3d lo, hi;  // the box's corners
     std::unique_ptr<IntCurvesFace_Intersector> line;
   };
   struct OfGeom {
     std::vector<Face> faces;  // every face of the shape, in TopExp_Explorer order
     BRepClass3d_SolidClassifier inside;
+    bool inside_loaded = false;  // `inside` is loaded on first use: the mesh answers most points
     double tolerance = 0;
+    double slack = 0;  // far above the rounding of a point's coordinates
   };
   tbb::enumerable_thread_specific<std::map<std::uint32_t, std::unique_ptr<OfGeom>>> per_thread;
 };
@@ -276,17 +281,104 @@ void clip_to_prism(const PatchPrism& p, Vec3d org, Vec3d dir, double& ta, double
 
 }  // namespace
 
+// Per geometry, mesh_band(), measured on first use.
+struct CadSurfaces::MeshBands {
+  struct OfGeom {
+    std::once_flag built;
+    double band = std::numeric_limits<double>::infinity();
+  };
+  explicit MeshBands(std::size_t geometries) : geoms(std::make_unique<OfGeom[]>(geometries)) {}
+  static double measure(const CadLink& l);
+  std::unique_ptr<OfGeom[]> geoms;
+};
+
+namespace {
+
+// The largest distance between triangle `uv`'s chord and its exact patch on face `f`, sampled at
+// the chord's edge midpoints and centre (a smooth patch deviates most from its chord about there).
+double chord_deviation(const CadFaces::Face& f, const std::array<double, 6>& uv) {
+  static constexpr double kBary[4][3] = {{0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5}, {1 / 3.0, 1 / 3.0, 1 / 3.0}};
+  const Geom_Surface& surf = *f.surface;
+  gp_Pnt c[3];
+  for (int k = 0; k < 3; ++k) c[k] = surf.Value(uv[std::size_t(2 * k)], uv[std::size_t(2 * k + 1)]);
+  double deviation = 0;
+  for (const auto& b : kBary) {
+    const double u = b[0] * uv[0] + b[1] * uv[2] + b[2] * uv[4], v = b[0] * uv[1] + b[1] * uv[3] + b[2] * uv[5];
+    const gp_XYZ chord = c[0].XYZ() * b[0] + c[1].XYZ() * b[1] + c[2].XYZ() * b[2];
+    deviation = std::max(deviation, surf.Value(u, v).XYZ().Subtracted(chord).Modulus());
+  }
+  return deviation;
+}
+
+}  // namespace
+
+double CadSurfaces::MeshBands::measure(const CadLink& l) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  if (l.check.folded > 0) return kInf;  // a fold turns the mesh inside out there
+  const CadFaces& faces = *l.faces;
+  std::vector<std::uint8_t> planar(faces.faces.size());
+  for (std::size_t f = 0; f < planar.size(); ++f)
+    planar[f] = GeomAdaptor_Surface(faces.faces[f].surface).GetType() == GeomAbs_Plane;
+  // Isolated, as HiddenFaces::build: this runs inside the thickness loop's parallel_for.
+  const double deviation = tbb::this_task_arena::isolate([&] {
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, l.face.size(), 1024), 0.0,
+        [&](const tbb::blocked_range<std::size_t>& range, double acc) {
+          for (std::size_t t = range.begin(); t != range.end(); ++t) {
+            if (planar[l.face[t]]) continue;  // a plane's patch is its chord
+            try {
+              acc = std::max(acc, chord_deviation(faces.faces[l.face[t]], l.uv[t]));
+            } catch (const Standard_Failure&) {
+              acc = kInf;  // the surface cannot be evaluated there: the mesh may lie anywhere
+            }
+            if (!(acc <= kInf)) acc = kInf;  // NaN
+          }
+          return acc;
+        },
+        [](double a, double b) { return std::max(a, b); });
+  });
+  double tolerance = 0;
+  for (const TopAbs_ShapeEnum kind : {TopAbs_FACE, TopAbs_EDGE, TopAbs_VERTEX})
+    for (TopExp_Explorer ex(faces.shape, kind); ex.More(); ex.Next()) {
+      const TopoDS_Shape& sh = ex.Current();
+      const double tol = kind == TopAbs_FACE   ? BRep_Tool::Tolerance(TopoDS::Face(sh))
+                         : kind == TopAbs_EDGE ? BRep_Tool::Tolerance(TopoDS::Edge(sh))
+                                               : BRep_Tool::Tolerance(TopoDS::Vertex(sh));
+      tolerance = std::max(tolerance, tol);
+    }
+  const ShapeScale scale = scale_of(faces.shape);
+  const double band = 2 * deviation + 2 * tolerance + 1e-9 * (scale.size + scale.max_abs);
+  return std::isfinite(band) ? band : kInf;
+}
+
+double CadSurfaces::mesh_band(std::uint32_t geom) const {
+  if (!covers(geom)) return std::numeric_limits<double>::infinity();
+  MeshBands::OfGeom& b = bands_->geoms[geom];
+  std::call_once(b.built, [&] {
+    try {
+      b.band = MeshBands::measure(links_[geom]);
+    } catch (const Standard_Failure&) {
+      b.band = std::numeric_limits<double>::infinity();
+    }
+  });
+  return b.band;
+}
+
 CadSurfaces::~CadSurfaces() = default;
 
-std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin) const {
+std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin,
+                                              const analysis::MeshSide* mesh) const {
   const CadLink& l = links_.at(geom);
   if (l.empty() || l.faces->shape.IsNull()) return std::nullopt;
+  const double band = mesh ? mesh_band(geom) : std::numeric_limits<double>::infinity();
   try {
     auto& x = intersectors_->per_thread.local()[geom];
     if (!x) {
       x = std::make_unique<Intersectors::OfGeom>();
-      const double size = scale_of(l.faces->shape).size;
+      const ShapeScale scale = scale_of(l.faces->shape);
+      const double size = scale.size;
       x->tolerance = 1e-9 * size;
+      x->slack = 1e-9 * (size + scale.max_abs);
       for (TopExp_Explorer ex(l.faces->shape, TopAbs_FACE); ex.More(); ex.Next()) {
         const TopoDS_Face& face = TopoDS::Face(ex.Current());
         Intersectors::Face f;
@@ -295,16 +387,26 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
         for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next())
           tol = std::max(tol, BRep_Tool::Tolerance(TopoDS::Edge(e.Current())));
         f.box.Enlarge(10 * tol + 1e-6 * size);  // points ON an edge lie within its tolerance
+        f.box.Get(f.lo.x, f.lo.y, f.lo.z, f.hi.x, f.hi.y, f.hi.z);
         f.line = std::make_unique<IntCurvesFace_Intersector>(face, x->tolerance);
         x->faces.push_back(std::move(f));
       }
-      x->inside.Load(l.faces->shape);
     }
     const gp_Lin line(gp_Pnt(org.x, org.y, org.z), gp_Dir(dir.x, dir.y, dir.z));
+    // A box the half-line beyond tmin misses holds no crossing there: the line misses it, or
+    // leaves it before tmin, through a side beyond which the point at tmin then lies.
+    const Vec3d at = org + dir * tmin;
+    auto behind = [&](const Intersectors::Face& f) {
+      for (std::size_t k = 0; k < 3; ++k) {
+        if (dir[k] > 0 && at[k] > f.hi[k] + x->slack) return true;
+        if (dir[k] < 0 && at[k] < f.lo[k] - x->slack) return true;
+      }
+      return false;
+    };
     // Where the line crosses a face (touching one, tangent to it, is no crossing), nearest first.
     std::vector<double> crossings;
     for (Intersectors::Face& f : x->faces) {
-      if (f.box.IsOut(line)) continue;
+      if (behind(f) || f.box.IsOut(line)) continue;
       f.line->Perform(line, tmin, std::numeric_limits<double>::infinity());
       if (!f.line->IsDone()) return std::nullopt;
       for (Standard_Integer i = 1; i <= f.line->NbPnt(); ++i)
@@ -316,11 +418,20 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
     // classifying the line between it and the next crossing: OpenCASCADE's transitions cannot be
     // trusted where the line runs in a face (a vertex sample on a rim, down the face below it: it
     // reports a crossing, "out" through the face's interior, every 1e-4 along it). Beyond the last
-    // crossing the line is outside.
+    // crossing the line is outside. A point farther than `band` from the mesh lies on the same
+    // side of the mesh and of the B-rep (the mesh deforms into the B-rep within the band without
+    // passing it): there the mesh's winding number answers, and OpenCASCADE's classifier (a
+    // line intersection of the whole solid per point) is asked only in the band.
     for (std::size_t i = 0; i < crossings.size(); ++i) {
       if (i + 1 == crossings.size()) return crossings[i];
       const double mid = 0.5 * (crossings[i] + crossings[i + 1]);
       if (mid - crossings[i] <= x->tolerance) continue;  // the same crossing, reported twice
+      const analysis::MeshSide::Side side = std::isfinite(band) && mid - crossings[i] > band
+                                                ? mesh->side(geom, org + dir * mid, dir, band)
+                                                : analysis::MeshSide::unknown;
+      if (side == analysis::MeshSide::outside) return crossings[i];
+      if (side == analysis::MeshSide::inside) continue;
+      if (!x->inside_loaded) x->inside.Load(l.faces->shape), x->inside_loaded = true;
       x->inside.Perform(line.Location().Translated(gp_Vec(line.Direction()) * mid), x->tolerance);
       if (x->inside.State() == TopAbs_OUT) return crossings[i];
     }
@@ -334,7 +445,8 @@ CadSurfaces::CadSurfaces(std::vector<CadLink> links)
     : links_(std::move(links)),
       intersectors_(std::make_unique<Intersectors>()),
       classifiers_(std::make_unique<Classifiers>(links_)),
-      hidden_(std::make_unique<HiddenFaces>(links_.size())) {
+      hidden_(std::make_unique<HiddenFaces>(links_.size())),
+      bands_(std::make_unique<MeshBands>(links_.size())) {
   folded_.resize(links_.size());
   for (std::size_t g = 0; g < links_.size(); ++g) {
     const CadLink& l = links_[g];

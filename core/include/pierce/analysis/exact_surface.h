@@ -37,6 +37,20 @@ struct NearestFacePoint {
   std::size_t start = 0;  // the index in the starts of the face it lies on
 };
 
+// Where a point lies against the closed mesh of a solid, as the caller of exact_exit can tell from
+// its own exact traversal: a cheaper answer than the exact solid's classifier, used by exact_exit
+// only where the two provably agree (the point farther from the mesh than the mesh may lie from
+// the B-rep). One object per thread.
+class MeshSide {
+ public:
+  enum Side : int { unknown = -1, outside = 0, inside = 1 };
+  virtual ~MeshSide() = default;
+  // Whether `p` lies inside the mesh of geometry `geom`: its winding number along `dir` (unit),
+  // counted by an exact kernel. unknown when a triangle of the geometry lies within `band` of
+  // `p`, or the winding number is neither 0 nor 1.
+  virtual Side side(std::uint32_t geom, Vec3d p, Vec3d dir, double band) const = 0;
+};
+
 // Every call is const and may run on many threads at once.
 class ExactSurfaces {
  public:
@@ -71,8 +85,12 @@ class ExactSurfaces {
   // geometry `geom` for its outside, from an exact intersection with every face; nullopt when
   // there is none. Touching a face (tangent to it, or running in it) is not leaving: a ray from a
   // rim down the face below it stays on the boundary, then inside, and leaves where the material
-  // ends. Much slower than intersect(): for the rare samples that need it.
-  virtual std::optional<double> exact_exit(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin) const = 0;
+  // ends. Much slower than intersect(): for the rare samples that need it. With `mesh` (the
+  // geometry's mesh is closed), a point between two crossings is classified by the mesh wherever
+  // it lies farther from the mesh than the mesh may deviate from the B-rep; the exact solid's
+  // classifier decides the others.
+  virtual std::optional<double> exact_exit(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin,
+                                           const MeshSide* mesh = nullptr) const = 0;
   // The smallest t in (0, t_end) where the line org + t dir (dir unit) crosses a face of
   // geometry `geom` where the face bulges into the solid beyond its triangles (a hole's wall, a
   // concave blend): such a crossing can lie within the facets' sagitta, so the mesh shows none (a
