@@ -215,8 +215,9 @@ bool trace_batch(const Accel& accel, KernelKind kind, const RayColumns& rays, st
   struct Chunk {
     std::size_t first_ray, end_ray, first_hit;
   };
-  // The rays of a chunk are built from the columns into the worker's fixed buffer, kGrain at a
-  // time (TBB's chunks are about kGrain rays, sometimes more), and traced with one collect_each.
+  // A chunk of rays is traced with one collect_each: in place when the columns are an array of
+  // Rays, else built from the columns into the worker's fixed buffer, kGrain at a time (TBB's
+  // chunks are about kGrain rays, sometimes more).
   constexpr std::size_t kGrain = 256;
   struct Worker {
     HitIterator it;
@@ -230,10 +231,14 @@ bool trace_batch(const Accel& accel, KernelKind kind, const RayColumns& rays, st
     if (tracker.stopped()) return;
     Worker& w = workers.local();
     w.chunks.push_back({r.begin(), r.end(), w.hits.size()});
-    for (std::size_t first = r.begin(); first < r.end(); first += kGrain) {
-      const std::size_t count = std::min(kGrain, r.end() - first);
-      for (std::size_t i = 0; i < count; ++i) w.rays[i] = rays[first + i];
-      w.it.collect_each({w.rays.data(), count}, max_hits, w.hits, out.offsets.data() + first + 1);
+    if (rays.as_rays) {
+      w.it.collect_each({rays.as_rays + r.begin(), r.size()}, max_hits, w.hits, out.offsets.data() + r.begin() + 1);
+    } else {
+      for (std::size_t first = r.begin(); first < r.end(); first += kGrain) {
+        const std::size_t count = std::min(kGrain, r.end() - first);
+        for (std::size_t i = 0; i < count; ++i) w.rays[i] = rays[first + i];
+        w.it.collect_each({w.rays.data(), count}, max_hits, w.hits, out.offsets.data() + first + 1);
+      }
     }
     tracker.add(r.size());
   });

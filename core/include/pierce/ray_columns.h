@@ -59,6 +59,8 @@ struct RayColumns {
   Vec3Column directions;
   DoubleColumn tmin = DoubleColumn::constant(0.0);
   DoubleColumn tmax = DoubleColumn::constant(std::numeric_limits<double>::infinity());
+  // The same rays as an array of Rays, when they are one (columns_of): traced in place.
+  const Ray* as_rays = nullptr;
 
   std::size_t size() const { return count; }
   Ray operator[](std::size_t i) const { return {origins[i], directions[i], tmin[i], tmax[i]}; }
@@ -78,6 +80,7 @@ inline RayColumns columns_of(std::span<const Ray> rays) {
   c.directions = {base + offsetof(Ray, dir) + offsetof(Vec3d, x), stride, component};
   c.tmin = DoubleColumn::per_ray(base + offsetof(Ray, tmin), stride);
   c.tmax = DoubleColumn::per_ray(base + offsetof(Ray, tmax), stride);
+  c.as_rays = rays.data();
   return c;
 }
 
