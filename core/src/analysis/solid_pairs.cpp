@@ -219,7 +219,7 @@ bool nearest_per_triangle(const Accel& accel, const std::vector<std::size_t>& tr
   const WideBvhf& bvh = accel.wide();
   std::vector<std::uint32_t> slot_solid(bvh.nodes.size() * kWideArity, kMixedSolids);
   if (!bvh.empty()) solid_below(bvh, bvh.root, slot_solid);
-  const double grow = d + bvh.scene_max_abs * 0x1p-23 + double(std::numeric_limits<float>::denorm_min());
+  const double grow = d + float_rounding_margin(bvh);
   const double d2 = d * d;
   // Above the rounding of plane_gap's dot products for the scene's coordinates and well-shaped
   // planes (plane_of), and far below any clearance worth asking for.

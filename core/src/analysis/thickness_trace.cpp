@@ -97,8 +97,8 @@ class SceneMeshSide final : public MeshSide {
   SceneMeshSide(const Accel& accel, HitIterator& it, NodeStack<float>& stack) : accel_(accel), it_(it), stack_(stack) {}
 
   Side side(std::uint32_t geom, Vec3d p, Vec3d dir, double band) const override {
-    // The kernel may trace the float copy of the mesh: it lies within |x| 2^-24 of the double one.
-    const double reach = band + accel_.wide().scene_max_abs * 0x1p-23;
+    // The kernel may trace the float copy of the mesh (float_rounding_margin from the double one).
+    const double reach = band + float_rounding_margin(accel_.wide());
     BBoxd box;
     box.lo = p - Vec3d{reach, reach, reach};
     box.hi = p + Vec3d{reach, reach, reach};

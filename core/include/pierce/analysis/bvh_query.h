@@ -88,15 +88,21 @@ void for_each_overlapping(const WideBvhd& bvh, const BBoxd& box, NodeStack<doubl
   });
 }
 
+// How far a float BVH's corners, and so its boxes, may lie from the scene's double coordinates:
+// a float corner lies within |x| * 2^-24 of the double it rounds; twice that for the scene's
+// largest coordinate, plus the smallest float.
+inline double float_rounding_margin(const WideBvhf& bvh) {
+  return bvh.scene_max_abs * 0x1p-23 + double(std::numeric_limits<float>::denorm_min());
+}
+
 // The same triangles as above, in double precision from `scene`, found on the float BVH built
-// from it (Accel::wide()), so that a query needs no double BVH. A float corner lies within
-// |x| * 2^-24 of the double one it rounds, so nodes are entered with `box` grown by twice that
-// for the scene's largest coordinate: every triangle whose double box overlaps `box` is reached
+// from it (Accel::wide()), so that a query needs no double BVH. Nodes are entered with `box`
+// grown by float_rounding_margin(): every triangle whose double box overlaps `box` is reached
 // (and its float box overlaps the grown one), then tested exactly. The calls come in the float
 // BVH's order.
 template <typename F>
 void for_each_overlapping(const Scene& scene, const WideBvhf& bvh, const BBoxd& box, NodeStack<float>& stack, F&& f) {
-  const double grow = bvh.scene_max_abs * 0x1p-23 + double(std::numeric_limits<float>::denorm_min());
+  const double grow = float_rounding_margin(bvh);
   BBoxd entry = box;
   entry.lo = entry.lo - Vec3d{grow, grow, grow};
   entry.hi = entry.hi + Vec3d{grow, grow, grow};
