@@ -210,7 +210,7 @@ TEST_P(PocketFloors, AssembledFromPartsIsOneRun) {
     for (std::size_t e = std::size_t(part); e < n; e += 2) measure.sample_mask[0][e] = 1;
     const ThicknessResult r = compute_thickness(world->accel, measure);
     for (std::size_t i = 0; i < r.size(); ++i)
-      rows.push_back({r.solid[i], r.element[i], r.point[i], r.normal[i], r.thickness[i], r.status[i], 0});
+      rows.push_back({r.solid[i], r.element[i], r.point[i], r.normal[i], r.thickness[i], r.status[i], 0, r.exit_triangle[i]});
   }
   ThicknessOptions all = o;
   all.sample_mask.assign(1, std::vector<std::uint8_t>(n, 1));

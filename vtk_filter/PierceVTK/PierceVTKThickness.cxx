@@ -295,15 +295,17 @@ std::vector<std::vector<std::uint8_t>> AllSampleMask(const Surfaces& surfaces, b
 
 pa::ThicknessResult AssembleThickness(const pierce::Accel& accel, const pa::ThicknessOptions& options,
                                       const pa::ThicknessResult& mine, const Distribution& distribution) {
-  // Per row: solid, element, point, normal, thickness, status, B-rep faces.
-  constexpr std::size_t kFields = 11;
+  // Per row: solid, element, point, normal, thickness, status, B-rep faces, exit triangle (-1:
+  // none). Every rank holds the whole scene, so triangle ids mean the same on all.
+  constexpr std::size_t kFields = 12;
   std::vector<double> rows;
   rows.reserve(mine.size() * kFields);
   for (std::size_t i = 0; i < mine.size(); ++i) {
     const pierce::Vec3d p = mine.point[i], n = mine.normal[i];
     rows.insert(rows.end(), {double(mine.solid[i]), double(mine.element[i]), p.x, p.y, p.z, n.x, n.y, n.z,
                              mine.thickness[i], double(mine.status[i]),
-                             mine.brep_faces.empty() ? 0.0 : double(mine.brep_faces[i])});
+                             mine.brep_faces.empty() ? 0.0 : double(mine.brep_faces[i]),
+                             mine.exit_triangle[i] == pierce::kInvalidId ? -1.0 : double(mine.exit_triangle[i])});
   }
   const std::vector<double> all = distribution.AllGather(rows);
   std::vector<pa::MeasuredSample> measured(all.size() / kFields);
@@ -317,6 +319,7 @@ pa::ThicknessResult AssembleThickness(const pierce::Accel& accel, const pa::Thic
     m.thickness = f[8];
     m.status = static_cast<pa::ThicknessStatus>(int(f[9]));
     m.brep_faces = static_cast<std::uint8_t>(f[10]);
+    m.exit_triangle = f[11] < 0 ? pierce::kInvalidId : std::uint32_t(f[11]);
   }
   return pa::assemble_thickness(accel, options, measured);
 }

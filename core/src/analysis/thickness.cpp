@@ -102,6 +102,7 @@ ThicknessResult assemble_thickness(const Accel& accel, const ThicknessOptions& o
     res.thickness[k] = m.thickness;
     res.status[k] = m.status;
     if (!res.brep_faces.empty()) res.brep_faces[k] = m.brep_faces;
+    res.exit_triangle[k] = m.exit_triangle;
   }
   detail::finish_statistics(accel.scene(), opts, set, res);
   detail::find_regions(accel, opts, set, res);

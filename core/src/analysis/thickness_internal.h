@@ -44,6 +44,8 @@ struct SampleSet {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> copies;  // (to, from)
   std::vector<std::pair<std::size_t, std::size_t>> ranges;      // result range per sampled solid
   std::vector<std::uint32_t> solids;                            // the sampled solids
+  // Per sampled solid when `ranges` is (compute_thickness): weld_by_position of its vertices.
+  std::vector<std::vector<std::uint32_t>> welds;
 
   void add_cad(Sample s, const CadSample& c) {
     s.cad = std::uint32_t(cad.size());

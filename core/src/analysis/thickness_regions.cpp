@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
 #include <tuple>
 
 #include "pierce/analysis/bvh_query.h"
@@ -46,7 +47,8 @@ struct UnionFind {
 struct SolidTopo {
   std::uint32_t geom = 0;
   const Geometry* geo = nullptr;
-  std::vector<std::uint32_t> weld, around_begin, around, row_of;
+  std::span<const std::uint32_t> weld;  // SampleSet::welds
+  std::vector<std::uint32_t> around_begin, around, row_of;
 
   std::span<const std::uint32_t> around_vertex(std::uint32_t v) const {
     const std::uint32_t w = weld[v];
@@ -54,13 +56,13 @@ struct SolidTopo {
   }
 };
 
-SolidTopo make_topo(const Scene& scene, std::uint32_t g, SampleAt per, const ThicknessResult& res,
-                    std::pair<std::size_t, std::size_t> range) {
+SolidTopo make_topo(const Scene& scene, std::uint32_t g, const std::vector<std::uint32_t>& weld, SampleAt per,
+                    const ThicknessResult& res, std::pair<std::size_t, std::size_t> range) {
   SolidTopo t;
   t.geom = g;
   t.geo = &scene.geometry(g);
   const Geometry& geo = *t.geo;
-  t.weld = weld_by_position(geo.vertices);
+  t.weld = weld;
   t.around_begin.assign(geo.vertices.size() + 1, 0);
   for (const Tri& tri : geo.triangles)
     for (auto v : tri) ++t.around_begin[t.weld[v] + 1];
@@ -133,6 +135,7 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
   res.region.assign(n, -1);
   const bool want_thin = opts.min_thickness > 0, want_thick = std::isfinite(opts.max_thickness);
   if ((!want_thin && !want_thick) || set.ranges.size() != set.solids.size()) return;
+  if (set.welds.size() != set.solids.size()) throw std::logic_error("find_regions: the sample set has no welds");
   // The one rule (thickness_regions.h), for samples and sub-samples alike.
   auto flag_of = [&](double t) -> std::uint8_t {
     if (!std::isfinite(t)) return 0;
@@ -161,7 +164,7 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
     if (!any) continue;
     const std::uint32_t g = set.solids[k];
     topo_of[g] = std::uint32_t(topo.size());
-    topo.push_back(make_topo(scene, g, opts.per, res, set.ranges[k]));
+    topo.push_back(make_topo(scene, g, set.welds[k], opts.per, res, set.ranges[k]));
     const SolidTopo& t = topo.back();
     const Geometry& geo = *t.geo;
     if (opts.per == SampleAt::vertex) {
@@ -182,11 +185,14 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
           }
       }
     }
-    // Where each flagged sample's ray leaves: the nearest triangle of the same solid.
+    // Where each flagged sample's ray leaves: the triangle the trace recorded, else the nearest
+    // triangle of the same solid to the exit point.
     tbb::enumerable_thread_specific<NodeStack<float>> stacks;
     parallel_for_items(e - b, 256, stacks, {}, [&](NodeStack<float>& stack, std::size_t j) {
       const std::size_t i = b + j;
-      if (flag[i] != 0) exit_tri[i] = nearest_triangle(scene, bvh, g, exit_of(i), start, limit, stack);
+      if (flag[i] == 0) return;
+      exit_tri[i] = res.exit_triangle.empty() ? kInvalidId : res.exit_triangle[i];
+      if (exit_tri[i] == kInvalidId) exit_tri[i] = nearest_triangle(scene, bvh, g, exit_of(i), start, limit, stack);
     });
     for (std::size_t i = b; i < e; ++i) {
       if (exit_tri[i] == kInvalidId) continue;
@@ -257,17 +263,16 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
   std::vector<std::size_t> tri_base(topo.size() + 1, 0);
   for (std::size_t k = 0; k < topo.size(); ++k) tri_base[k + 1] = tri_base[k] + topo[k].geo->triangles.size();
   owner[0].assign(tri_base.back(), -1), owner[1].assign(tri_base.back(), -1);
-  std::vector<std::vector<std::uint32_t>> seeds(regions.size());  // (triangle) per region
-  for (std::uint32_t i = 0; i < n; ++i) {
-    if (res.region[i] < 0) continue;
-    const SolidTopo& t = topo[topo_of[res.solid[i]]];
-    auto& s = seeds[std::size_t(res.region[i])];
-    if (opts.per == SampleAt::face) {
-      s.push_back(res.element[i]);
-    } else {
-      for (std::uint32_t tri : t.around_vertex(res.element[i])) s.push_back(tri);
-    }
-    if (exit_tri[i] != kInvalidId) s.push_back(exit_tri[i]);
+  // The samples of each region (CSR).
+  std::vector<std::uint32_t> member_begin(regions.size() + 1, 0), members;
+  for (std::uint32_t i = 0; i < n; ++i)
+    if (res.region[i] >= 0) ++member_begin[std::size_t(res.region[i]) + 1];
+  for (std::size_t r = 0; r < regions.size(); ++r) member_begin[r + 1] += member_begin[r];
+  members.resize(member_begin.back());
+  {
+    std::vector<std::uint32_t> fill(member_begin.begin(), member_begin.end() - 1);
+    for (std::uint32_t i = 0; i < n; ++i)
+      if (res.region[i] >= 0) members[fill[std::size_t(res.region[i])]++] = i;
   }
   std::vector<RefineItem> items;
   std::vector<std::uint32_t> listed(tri_base.back(), kInvalidId);  // the last region listing it
@@ -280,12 +285,25 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
     const SolidTopo& t = topo[k];
     const Geometry& geo = *t.geo;
     auto& own = owner[r < thin_count ? 0 : 1];
+    // The triangles whose one-ring may hold some of the region's area (a sample's own triangle
+    // per face, every exit triangle), each once; per vertex, those around its samples (their
+    // one-ring already); then the one-ring of the first.
     std::vector<std::uint32_t> tris;
-    for (std::uint32_t tri : seeds[r])
-      for (auto v : geo.triangles[tri])
-        for (std::uint32_t nb : t.around_vertex(v))
-          if (std::uint32_t& l = listed[tri_base[k] + nb]; l != r) l = std::uint32_t(r), tris.push_back(nb);
-    std::vector<std::uint32_t>().swap(seeds[r]);
+    auto list = [&](std::uint32_t tri) {
+      if (std::uint32_t& l = listed[tri_base[k] + tri]; l != r) l = std::uint32_t(r), tris.push_back(tri);
+    };
+    const std::span<const std::uint32_t> mine(members.data() + member_begin[r], member_begin[r + 1] - member_begin[r]);
+    for (std::uint32_t i : mine) {
+      if (opts.per == SampleAt::face) list(res.element[i]);
+      if (exit_tri[i] != kInvalidId) list(exit_tri[i]);
+    }
+    const std::size_t unique_seeds = tris.size();
+    if (opts.per == SampleAt::vertex)
+      for (std::uint32_t i : mine)
+        for (std::uint32_t tri : t.around_vertex(res.element[i])) list(tri);
+    for (std::size_t q = 0; q < unique_seeds; ++q)
+      for (auto v : geo.triangles[tris[q]])
+        for (std::uint32_t nb : t.around_vertex(v)) list(nb);
     // In triangle order: sorted, or for a region over much of its solid, read off the marks.
     if (tris.size() * 8 < geo.triangles.size()) {
       std::sort(tris.begin(), tris.end());

@@ -165,7 +165,7 @@ SampleSet build_samples(const Scene& scene, const ThicknessOptions& opts, Thickn
   reserve_huge(res.status, elements), reserve_huge(set.samples, elements);
   for (std::uint32_t g : set.solids) {
     const Geometry& geo = scene.geometry(g);
-    const auto weld = weld_by_position(geo.vertices);
+    std::vector<std::uint32_t> weld = weld_by_position(geo.vertices);
     const std::size_t base = res.size();
     const bool cad = is_cad(opts, g);
     const std::span<const std::uint8_t> folded = folded_flags(opts, g);
@@ -342,8 +342,10 @@ SampleSet build_samples(const Scene& scene, const ThicknessOptions& opts, Thickn
       }
     }
     set.ranges.emplace_back(base, res.size());
+    set.welds.push_back(std::move(weld));
   }
   if (any_exact) res.brep_faces.assign(res.size(), 0);
+  res.exit_triangle.assign(res.size(), kInvalidId);
   return set;
 }
 
@@ -385,6 +387,7 @@ SampleSet build_point_samples(const Scene& scene, const ThicknessOptions& opts, 
   bool any_exact = false;
   for (std::uint32_t g : set.solids) any_exact = any_exact || (opts.exact && opts.exact->covers(g));
   if (any_exact) res.brep_faces.assign(n, 0);
+  res.exit_triangle.assign(n, kInvalidId);
   std::vector<Sample> samples(n);
   std::vector<CadSample> cads(n);  // of the CAD points
   std::vector<std::uint8_t> has_sample(n, 0);

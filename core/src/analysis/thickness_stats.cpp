@@ -11,6 +11,7 @@ void finish_statistics(const Scene& scene, const ThicknessOptions& opts, const S
   for (auto [to, from] : set.copies) {
     res.thickness[to] = res.thickness[from];
     res.status[to] = res.status[from];
+    res.exit_triangle[to] = res.exit_triangle[from];
     if (!res.brep_faces.empty()) {
       res.brep_faces[to] = res.brep_faces[from];
       res.point[to] = res.point[from];

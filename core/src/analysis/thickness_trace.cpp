@@ -87,6 +87,7 @@ constexpr double kGrazingCos = 0.25;
 struct Measured {
   double t = detail::kNaN;
   ThicknessStatus status = ThicknessStatus::ok;
+  std::uint32_t exit_triangle = kInvalidId;  // mesh samples: the triangle the ray left through
 };
 
 // MeshSide on the scene's mesh, with a worker's traversal state: the triangles near the point are
@@ -193,10 +194,12 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
   // One ray of a sample: meshes as ray_exit_distance; CAD samples traced on the mesh from the
   // mesh point, then the exit refined on the exact face of the triangle crossed.
   auto one_ray = [&](Worker& w, const Sample& s, const Start& at, Vec3d dir) -> Measured {
-    if (!at.cad)
-      return {ray_exit_distance(w.it, s.geom, at.point, dir, opts.max_distance, tie, offset_of(s, at.point, dir))};
-    const CadSample& c = *at.cad;
     ExitRecord rec;
+    if (!at.cad) {
+      const double t = exit_impl<true>(w.it, s.geom, at.point, dir, opts.max_distance, tie, offset_of(s, at.point, dir), &rec);
+      return {t, ThicknessStatus::ok, std::isnan(t) ? kInvalidId : rec.prim};
+    }
+    const CadSample& c = *at.cad;
     const double tm = exit_impl<true>(w.it, s.geom, c.mesh_point, dir, opts.max_distance, tie, 0, &rec);
     const std::span<const std::uint8_t> folded = folded_flags(opts, s.geom);
     const bool met_fold = !folded.empty() && rec.first_prim != kInvalidId && folded[rec.first_prim] != 0;
@@ -302,6 +305,7 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
     } else {
       res.thickness[s.out_index] = m.t;
       res.status[s.out_index] = std::isnan(m.t) ? ThicknessStatus::no_exit : ThicknessStatus::ok;
+      if (opts.method == ThicknessMethod::ray) res.exit_triangle[s.out_index] = m.exit_triangle;
     }
   });
   if (!completed) return false;

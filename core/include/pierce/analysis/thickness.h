@@ -155,6 +155,11 @@ struct ThicknessResult {
   // an edge (the thickness, point and normal are those of its smallest sample). Empty when no
   // sampled geometry is covered by ThicknessOptions::exact.
   std::vector<std::uint8_t> brep_faces;
+  // The triangle of its solid through which the sample's ray leaves: the ray method on a mesh
+  // sample only (the one kind whose exit lies on a triangle of the mesh); kInvalidId elsewhere.
+  // Regions join each flagged sample with the samples there; without it they look the exit
+  // point's nearest triangle up.
+  std::vector<std::uint32_t> exit_triangle;
   std::vector<SolidThickness> solids;  // per-solid statistics
   // Regions (thickness_regions.h; compute_thickness only, with a threshold set): thin ones
   // thinnest first, thick ones thickest first (ties by solid, then point). `region` holds one id
@@ -201,6 +206,7 @@ struct MeasuredSample {
   double thickness = 0;
   ThicknessStatus status = ThicknessStatus::ok;
   std::uint8_t brep_faces = 0;
+  std::uint32_t exit_triangle = kInvalidId;
 };
 
 // What compute_thickness(accel, opts) returns, from rows already measured by compute_thickness

@@ -8,10 +8,12 @@
 //  - grouping: thin (thick) samples connected on the surface of one solid form a region (per
 //    vertex: vertices joined by a triangle edge, coincident vertices welded; per face: triangles
 //    sharing an edge or a vertex), and a region is joined with the region its rays exit in (the
-//    sample or triangle of the same solid closest to point - normal * thickness), so both sides
-//    of a thin floor are one region;
-//  - area: both sides of the wall. The triangles holding the region's samples or exits and their
-//    one-ring neighbours are subdivided (4-way, at edge midpoints) where the flag of the
+//    samples of the exit triangle: the triangle the ray leaves through for the ray method on a
+//    mesh, else the triangle of the same solid closest to point - normal * thickness), so both
+//    sides of a thin floor are one region;
+//  - area: both sides of the wall. The exit triangles and, per face, the region's triangles,
+//    with their one-ring neighbours, and per vertex the triangles around the region's vertices
+//    (their one-ring already) are subdivided (4-way, at edge midpoints) where the flag of the
 //    sub-triangles' centroids changes, each centroid traced like a ray sample along its
 //    triangle's inward normal (ray_exit_distance, on the mesh), and the flagged sub-triangles'
 //    areas summed, each for the region of its triangle's samples, else of the samples where its
