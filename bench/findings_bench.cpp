@@ -2,9 +2,10 @@
 // CLI takes. Thin regions (ThicknessOptions::min_thickness: grouping, exits and the refined
 // area) on `pierce thickness`'s 1.64 M-triangle shell (gen::hollow_sphere(8, 7), per vertex) and
 // on the same shell with its inner sphere off centre, at thresholds that flag 1 % and 50 % of
-// the samples; and the contact / clash / clearance pairs (classify_solid_pairs with a clearance)
-// after `pierce overlaps`'s coplanar search and axis-grid rays on a 36-solid assembly (a row of
-// face-touching boxes and 30 bumpy blobs that clash or nearly touch). Each job runs with and without its findings, interleaved repetition by
+// the samples; and the contact / clash / clearance pairs (classify_solid_pairs with a clearance,
+// without and with the per-triangle Clearance map) after `pierce overlaps`'s coplanar search and
+// axis-grid rays on a 36-solid assembly (a row of face-touching boxes and 30 bumpy blobs that
+// clash or nearly touch). Each job runs with and without its findings, interleaved repetition by
 // repetition; medians and the ratios are printed. A benchmark: it reports, it never asserts a
 // speed.
 #include <tbb/global_control.h>
@@ -146,16 +147,20 @@ void bench_pairs(const Options& o) {
                     const auto [cop, rep] = overlaps();
                     return std::to_string(rep.interferences.size()) + " interfering pairs";
                   });
-  jobs.emplace_back("overlaps + pairs", [&] {
-                    const auto [cop, rep] = overlaps();
-                    const analysis::SolidPairReport pairs =
-                        analysis::classify_solid_pairs(accel, cop, rep, grid_n, kClearance);
-                    std::size_t count[3] = {};
-                    for (const analysis::SolidPair& p : pairs.pairs) ++count[int(p.kind)];
-                    return std::to_string(count[int(analysis::PairKind::clash)]) + " clash, " +
-                           std::to_string(count[int(analysis::PairKind::contact)]) + " contact, " +
-                           std::to_string(count[int(analysis::PairKind::clearance)]) + " clearance";
-                  });
+  auto pairs_job = [&](bool triangle_clearance) {
+    return [&, triangle_clearance] {
+      const auto [cop, rep] = overlaps();
+      const analysis::SolidPairReport pairs =
+          analysis::classify_solid_pairs(accel, cop, rep, grid_n, kClearance, triangle_clearance);
+      std::size_t count[3] = {};
+      for (const analysis::SolidPair& p : pairs.pairs) ++count[int(p.kind)];
+      return std::to_string(count[int(analysis::PairKind::clash)]) + " clash, " +
+             std::to_string(count[int(analysis::PairKind::contact)]) + " contact, " +
+             std::to_string(count[int(analysis::PairKind::clearance)]) + " clearance";
+    };
+  };
+  jobs.emplace_back("overlaps + pairs", pairs_job(false));
+  jobs.emplace_back("overlaps + pairs + Clearance map", pairs_job(true));
   run_interleaved(jobs, o.reps);
   print_jobs(jobs);
 }

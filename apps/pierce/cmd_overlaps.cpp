@@ -283,9 +283,10 @@ int run_overlaps(const OverlapsCli& o) {
   SolidPairOptions popts;
   popts.clearance = o.clearance;
   popts.kernel = kernel;
-  const SolidPairReport pairs = grid_n > 0
-                                    ? classify_solid_pairs(accel, cop, rep, grid_n, o.clearance, std::ref(pair_bar))
-                                    : analyse_solid_pairs(accel, popts, std::ref(pair_bar));
+  popts.triangle_clearance = format == Format::vtp;  // the one output holding the map
+  const SolidPairReport pairs =
+      grid_n > 0 ? classify_solid_pairs(accel, cop, rep, grid_n, o.clearance, popts.triangle_clearance, std::ref(pair_bar))
+                 : analyse_solid_pairs(accel, popts, std::ref(pair_bar));
   pair_bar.finish();
   if (!pairs.completed || interrupted()) return cancelled();
 

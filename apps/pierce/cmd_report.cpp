@@ -293,7 +293,8 @@ int run_report(const ReportCli& o) {
     const RayOverlapReport rays =
         analyse_ray_overlaps(accel, axis_grid_rays(scene.bounds(), kPairGrid), ropts, std::ref(pair_bar));
     if (!rays.completed || interrupted()) return cancelled();
-    pairs = classify_solid_pairs(accel, cop, rays, kPairGrid, o.clearance, std::ref(pair_bar));
+    pairs = classify_solid_pairs(accel, cop, rays, kPairGrid, o.clearance, /*triangle_clearance=*/true,
+                                 std::ref(pair_bar));
     pair_bar.finish();
     if (!pairs->completed || interrupted()) return cancelled();
     pair_map(triangle_overlap_arrays(scene, &cop, &rays), *pairs, display);

@@ -15,10 +15,11 @@ namespace {
 
 using namespace pierce::analysis;
 
-SolidPairReport pairs_of(const World& w, double clearance, int grid_n = 64) {
+SolidPairReport pairs_of(const World& w, double clearance, int grid_n = 64, bool triangle_clearance = true) {
   SolidPairOptions o;
   o.clearance = clearance;
   o.grid_n = grid_n;
+  o.triangle_clearance = triangle_clearance;
   return analyse_solid_pairs(w.accel, o);
 }
 
@@ -158,7 +159,8 @@ TEST(SolidPairs, AssemblyReportsEachPairOnceInOrder) {
 
 // Bumpy blobs close enough to clash or pass within the clearance: every triangle's clearance and
 // every clearance pair's gap are the minima over all triangle pairs of two solids, checked by
-// measuring them all; the report is the same on one thread and on all.
+// measuring them all; the report is the same on one thread and on all, and its pairs the same
+// without the map.
 TEST(SolidPairs, ClearanceIsTheMinimumOverAllTrianglePairs) {
   constexpr double kClearance = 0.3;
   std::vector<gen::Mesh> solids;
@@ -181,6 +183,16 @@ TEST(SolidPairs, ClearanceIsTheMinimumOverAllTrianglePairs) {
     }
   }
   EXPECT_EQ(all_threads.triangle_clearance, one_thread.triangle_clearance);
+  const SolidPairReport without_map = pairs_of(*w, kClearance, 64, false);
+  EXPECT_TRUE(without_map.triangle_clearance.empty());
+  ASSERT_EQ(without_map.pairs.size(), all_threads.pairs.size());
+  for (std::size_t k = 0; k < all_threads.pairs.size(); ++k) {
+    const SolidPair &x = all_threads.pairs[k], &y = without_map.pairs[k];
+    EXPECT_EQ(std::tie(x.solid_a, x.solid_b, x.kind), std::tie(y.solid_a, y.solid_b, y.kind)) << k;
+    if (x.kind == PairKind::clearance) {
+      EXPECT_TRUE(x.gap == y.gap && x.point == y.point && x.point_b == y.point_b) << k;
+    }
+  }
 
   // Brute force: the least distance from each triangle to each other solid.
   const std::size_t solid_count = scene.geometries().size();
@@ -235,14 +247,16 @@ TEST(SolidPairs, ClearanceIsTheMinimumOverAllTrianglePairs) {
 TEST(SolidPairs, PairBehindANearerSolidIsReported) {
   auto w = make_world({gen::box({0, 0, 0}, {1, 1, 1}, "a"), gen::box({1.2, 0, 0.5}, {2, 1, 1}, "b"),
                        gen::box({-0.5, -0.5, 1.1}, {2.5, 1.5, 1.5}, "c")});
-  const SolidPairReport r = pairs_of(*w, 0.3);
-  ASSERT_EQ(r.pairs.size(), 3u);
-  for (const SolidPair& p : r.pairs) EXPECT_EQ(p.kind, PairKind::clearance);
-  EXPECT_EQ(r.pairs[2].solid_a, 0u);
-  EXPECT_EQ(r.pairs[2].solid_b, 1u);
-  EXPECT_NEAR(r.pairs[2].gap, 0.2, 1e-12);
-  EXPECT_NEAR(r.pairs[0].gap, 0.1, 1e-12);
-  EXPECT_NEAR(r.pairs[1].gap, 0.1, 1e-12);
+  for (const bool triangle_clearance : {true, false}) {
+    const SolidPairReport r = pairs_of(*w, 0.3, 64, triangle_clearance);
+    ASSERT_EQ(r.pairs.size(), 3u);
+    for (const SolidPair& p : r.pairs) EXPECT_EQ(p.kind, PairKind::clearance);
+    EXPECT_EQ(r.pairs[2].solid_a, 0u);
+    EXPECT_EQ(r.pairs[2].solid_b, 1u);
+    EXPECT_NEAR(r.pairs[2].gap, 0.2, 1e-12);
+    EXPECT_NEAR(r.pairs[0].gap, 0.1, 1e-12);
+    EXPECT_NEAR(r.pairs[1].gap, 0.1, 1e-12);
+  }
 }
 
 TEST(SolidPairs, BadOptionsThrow) {

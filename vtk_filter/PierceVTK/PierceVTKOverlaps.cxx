@@ -66,7 +66,8 @@ bool RunOverlaps(const pierce::Scene& scene, const OverlapSettings& settings, Pr
     progress.SetRange(0.9, 1.0);
     const pa::CoplanarReport exact = out.coplanar ? pa::CoplanarReport{} : pa::find_coplanar_overlaps(scene);
     out.pairs = pa::classify_solid_pairs(accel, out.coplanar ? *out.coplanar : exact, *out.rays,
-                                         settings.rays_per_axis, settings.clearance, progress.Callback());
+                                         settings.rays_per_axis, settings.clearance, /*triangle_clearance=*/true,
+                                         progress.Callback());
     if (!out.pairs->completed || progress.CheckAbort()) return false;
   }
   return true;

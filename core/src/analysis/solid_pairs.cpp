@@ -157,13 +157,14 @@ double box_distance2(const BBoxd& a, const BBoxd& b) {
 }
 
 // A triangle of another solid near a leaf's triangles: its corners, box and plane (unit normal
-// n, offset w: dot(n, x) = w in the plane).
+// n, offset w: dot(n, x) = w in the plane; found when first needed).
 struct Candidate {
   std::uint32_t geom, prim;
   Vec3d c[3];
   BBoxd box;
   Vec3d n;
-  double w;
+  double w = 0;
+  bool has_plane = false;
 };
 
 // The plane of triangle t as (unit normal, offset); a zero normal where the corners are too
@@ -202,9 +203,10 @@ struct PairsWorker {
 };
 
 // For every triangle, points in other solids within distance `d` (strictly), enough for two
-// exact minima: the triangle's distance to the nearest other solid (the least of its entries),
-// and each pair's distance and points, measured from its lower solid's triangles (the nearest of
-// their entries for the higher solid).
+// exact minima: with `per_triangle`, the triangle's distance to the nearest other solid (the
+// least of its entries), and always each pair's distance and points, measured from its lower
+// solid's triangles (the nearest of their entries for the higher solid; without `per_triangle`
+// only higher solids are searched).
 // Triangle i is at tri_offset[g] + p. The float BVH is queried once per leaf block and solid, with
 // the box of the block's triangles of that solid grown by d (for_each_overlapping's rule), and
 // the subtrees of that solid skipped. Each triangle measures exactly the candidates whose lower
@@ -213,7 +215,7 @@ struct PairsWorker {
 // thread has seen for the pair: a candidate at either minimum is never skipped. Entries keep the
 // nearer() points, so neither minimum nor its points depend on the BVH's layout, the order of
 // the candidates or the threads.
-bool nearest_per_triangle(const Accel& accel, const std::vector<std::size_t>& tri_offset, double d,
+bool nearest_per_triangle(const Accel& accel, const std::vector<std::size_t>& tri_offset, double d, bool per_triangle,
                           std::vector<std::vector<Near>>& near, const Progress& progress) {
   const Scene& scene = accel.scene();
   const WideBvhf& bvh = accel.wide();
@@ -243,20 +245,27 @@ bool nearest_per_triangle(const Accel& accel, const std::vector<std::size_t>& tr
       for (std::uint32_t m = todo; m != 0; m &= m - 1)
         if (const int l = __builtin_ctz(m); block.geom[l] == g) lanes |= 1u << l, entry.extend(box_of(g, block.prim[l], c));
       todo &= ~lanes;
+      const BBoxd lanes_box = entry;
       entry.lo = entry.lo - Vec3d{grow, grow, grow};
       entry.hi = entry.hi + Vec3d{grow, grow, grow};
+      // The subtrees worth entering: not of solid g alone (nor, without per_triangle, of a lower one).
       auto enter = [&](const BBoxf& b, const WideNode<float>& node, int slot) {
-        return slot_solid[std::size_t(&node - bvh.nodes.data()) * kWideArity + std::size_t(slot)] != g &&
-               boxes_overlap(b, entry);
+        const std::uint32_t below = slot_solid[std::size_t(&node - bvh.nodes.data()) * kWideArity + std::size_t(slot)];
+        return below != g && (per_triangle || below == kMixedSolids || below > g) && boxes_overlap(b, entry);
       };
       w.candidates.clear();
       for_each_entered(bvh, w.stack, enter, [&](const Triangle<float>& tf) {
-        if (tf.geom == g) return;
+        if (tf.geom == g || (!per_triangle && tf.geom < g)) return;
         Candidate k;
         k.geom = tf.geom, k.prim = tf.prim;
         k.box = box_of(tf.geom, tf.prim, k.c);
         if (!boxes_overlap(k.box, entry)) return;
-        std::tie(k.n, k.w) = plane_of(k.c);
+        // Without the map, a candidate farther from all the lanes than the pair's least distance
+        // so far can reach no minimum.
+        if (!per_triangle) {
+          const auto seen = w.pair_best.find(std::uint64_t(g) << 32 | tf.geom);
+          if (seen != w.pair_best.end() && box_distance2(lanes_box, k.box) > seen->second) return;
+        }
         w.candidates.push_back(k);
       });
       for (std::uint32_t m = lanes; m != 0; m &= m - 1) {
@@ -276,14 +285,15 @@ bool nearest_per_triangle(const Accel& accel, const std::vector<std::size_t>& tr
         // Whether a candidate in solid h with this bound can still reach a minimum.
         auto wanted = [&](double bound, std::uint32_t h) {
           if (!(bound < d2)) return false;
-          if (bound <= nearest) return true;
+          if (per_triangle && bound <= nearest) return true;
           if (h < g) return false;
           const auto seen = w.pair_best.find(std::uint64_t(g) << 32 | h);
           return seen == w.pair_best.end() || bound <= seen->second;
         };
         for (const Bounded& bounded : w.bounded) {
-          const Candidate& k = w.candidates[bounded.candidate];
+          Candidate& k = w.candidates[bounded.candidate];
           if (!wanted(bounded.bound, k.geom)) continue;
+          if (!k.has_plane) std::tie(k.n, k.w) = plane_of(k.c), k.has_plane = true;
           const double gap = std::max(plane_gap(n, off, k.c, slack), plane_gap(k.n, k.w, a, slack));
           if (!wanted(gap * gap, k.geom)) continue;
           const Vec3d* b = k.c;
@@ -371,7 +381,7 @@ void measure_clashes(const Scene& scene, const RayOverlapReport& rays, int grid_
 
 SolidPairReport classify_solid_pairs(const Accel& accel, const CoplanarReport& coplanar,
                                      const RayOverlapReport& rays, int grid_n, double clearance,
-                                     const Progress& progress) {
+                                     bool triangle_clearance, const Progress& progress) {
   if (!(clearance >= 0) || !std::isfinite(clearance))
     throw std::invalid_argument("solid pairs: clearance must be a finite number >= 0");
   if (grid_n <= 0) throw std::invalid_argument("solid pairs: grid_n must be > 0");
@@ -408,18 +418,18 @@ SolidPairReport classify_solid_pairs(const Accel& accel, const CoplanarReport& c
     }
 
   // Clearance: the nearest triangles of the remaining pairs.
-  r.triangle_clearance.assign(r.tri_offset.back(), clearance);
+  if (triangle_clearance) r.triangle_clearance.assign(r.tri_offset.back(), clearance);
   std::map<PairKey, SolidPair> nearest;
   if (clearance > 0) {
     std::vector<std::vector<Near>> near;
-    if (!nearest_per_triangle(accel, r.tri_offset, clearance, near, progress)) {
+    if (!nearest_per_triangle(accel, r.tri_offset, clearance, triangle_clearance, near, progress)) {
       r.completed = false;
       return r;
     }
     for (std::uint32_t g = 0; g < scene.geometries().size(); ++g)
       for (std::size_t i = r.tri_offset[g]; i < r.tri_offset[g + 1]; ++i)
         for (const Near& x : near[i]) {
-          r.triangle_clearance[i] = std::min(r.triangle_clearance[i], std::sqrt(x.dist2));
+          if (triangle_clearance) r.triangle_clearance[i] = std::min(r.triangle_clearance[i], std::sqrt(x.dist2));
           if (x.other < g) continue;  // the pair is measured from its lower solid's triangles
           auto [it, fresh] = nearest.try_emplace({g, x.other});
           SolidPair& s = it->second;
@@ -434,7 +444,7 @@ SolidPairReport classify_solid_pairs(const Accel& accel, const CoplanarReport& c
   }
   // Contact and clash make a triangle's clearance 0 where it takes part in them.
   for (const CoplanarPair& p : coplanar.pairs)
-    if (p.exact && p.geom_a != p.geom_b)
+    if (triangle_clearance && p.exact && p.geom_a != p.geom_b)
       r.triangle_clearance[r.tri_offset[p.geom_a] + p.prim_a] = r.triangle_clearance[r.tri_offset[p.geom_b] + p.prim_b] = 0;
   if (rays.interference_hits.size() == r.triangle_clearance.size())
     for (std::size_t i = 0; i < r.triangle_clearance.size(); ++i)
@@ -475,7 +485,7 @@ SolidPairReport analyse_solid_pairs(const Accel& accel, const SolidPairOptions& 
   const RayOverlapReport rays =
       analyse_ray_overlaps(accel, axis_grid_rays(accel.scene().bounds(), opts.grid_n), ro, progress);
   if (!rays.completed) return {opts.clearance, {}, {}, {}, false};
-  return classify_solid_pairs(accel, coplanar, rays, opts.grid_n, opts.clearance, progress);
+  return classify_solid_pairs(accel, coplanar, rays, opts.grid_n, opts.clearance, opts.triangle_clearance, progress);
 }
 
 }  // namespace pierce::analysis

@@ -42,6 +42,9 @@ struct SolidPairOptions {
   int grid_n = 128;      // interference rays: grid_n x grid_n along each axis (axis_grid_rays)
   KernelKind kernel = kDefaultKernel;  // any exact kernel gives the same result
   double tie_tolerance_rel = 1e-6;     // as RayOverlapOptions::tie_tolerance_rel
+  // Also SolidPairReport::triangle_clearance, the per-triangle map. Without it only each pair's
+  // least distance is searched for, which costs a fraction of the map.
+  bool triangle_clearance = true;
 };
 
 struct SolidPair {
@@ -63,7 +66,7 @@ struct SolidPairReport {
   std::vector<SolidPair> pairs;
   // Per triangle (g, p) at tri_offset[g] + p: distance to the nearest other solid, capped at D;
   // 0 for triangles in exact coplanar contact with another solid or opening or closing an
-  // interference along the rays. Degenerate triangles get D.
+  // interference along the rays. Degenerate triangles get D. Empty when not asked for.
   std::vector<std::size_t> tri_offset;
   std::vector<double> triangle_clearance;
   bool completed = true;
@@ -76,10 +79,11 @@ SolidPairReport analyse_solid_pairs(const Accel& accel, const SolidPairOptions& 
 
 // The same from reports already computed: `rays` must come from analyse_ray_overlaps on
 // axis_grid_rays(scene.bounds(), grid_n) (all three axes) with keep_intervals; only the exact
-// pairs of `coplanar` are used, so any coplanar tolerance will do.
+// pairs of `coplanar` are used, so any coplanar tolerance will do. `triangle_clearance`: as
+// SolidPairOptions::triangle_clearance.
 SolidPairReport classify_solid_pairs(const Accel& accel, const CoplanarReport& coplanar,
                                      const RayOverlapReport& rays, int grid_n, double clearance,
-                                     const Progress& progress = {});
+                                     bool triangle_clearance, const Progress& progress = {});
 
 // Distance, in double precision, between triangles (a0, a1, a2) and (b0, b1, b2) with the closest
 // points on each: 0 when they intersect (an edge of one crosses the other, or coplanar overlap).
