@@ -117,7 +117,6 @@ struct Sub {
 
 struct Worker {
   HitIterator it;
-  NodeStack<float> stack;
   std::vector<Sub> subs;
 };
 
@@ -350,7 +349,7 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
 
   KernelOptions kopts;
   kopts.order.tie = TieOrder::leave_before_enter;  // what ray_exit_distance requires
-  tbb::enumerable_thread_specific<Worker> workers([&] { return Worker{HitIterator(accel, opts.kernel, kopts), {}, {}}; });
+  tbb::enumerable_thread_specific<Worker> workers([&] { return Worker{HitIterator(accel, opts.kernel, kopts), {}}; });
   // A region of class `want` among the samples of triangle `tri` (its own, or its corners'), or -1.
   auto region_on = [&](const SolidTopo& t, std::uint32_t tri, std::uint8_t want) -> std::int32_t {
     auto of = [&](std::uint32_t element) {
@@ -400,13 +399,9 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
       }
       return;
     }
-    auto add = [&](const Sub& k, double t) {
+    auto add = [&](const Sub& k, std::uint32_t exit_triangle) {
       std::int32_t r = own;
-      if (r < 0) {
-        const Vec3d exit = (k.a + k.b + k.c) * (1.0 / 3.0) + inward * t;
-        const std::uint32_t at = nearest_triangle(scene, bvh, item.geom, exit, start, limit, w.stack);
-        if (at != kInvalidId) r = region_on(topology, at, want);
-      }
+      if (r < 0 && exit_triangle != kInvalidId) r = region_on(topology, exit_triangle, want);
       if (r < 0) r = std::int32_t(item.region);
       credit(r, tri_area(k.a, k.b, k.c));
     };
@@ -419,12 +414,11 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
       const Vec3d ab = (s.a + s.b) * 0.5, bc = (s.b + s.c) * 0.5, ca = (s.c + s.a) * 0.5;
       const std::array<Sub, 4> kids{Sub{s.a, ab, ca, s.depth + 1}, Sub{ab, s.b, bc, s.depth + 1},
                                     Sub{ca, bc, s.c, s.depth + 1}, Sub{ab, bc, ca, s.depth + 1}};
-      std::array<double, 4> t{};
+      std::array<std::uint32_t, 4> exit{};
       std::array<bool, 4> f{};
       for (std::size_t q = 0; q < 4; ++q) {
         const Vec3d m = (kids[q].a + kids[q].b + kids[q].c) * (1.0 / 3.0);
-        t[q] = ray_exit_distance(w.it, item.geom, m, inward, opts.max_distance, tie);
-        f[q] = flag_of(t[q]) == want;
+        f[q] = flag_of(ray_exit(w.it, item.geom, m, inward, opts.max_distance, tie, exit[q])) == want;
       }
       rays += 4;
       const bool mixed = !(f[0] == f[1] && f[1] == f[2] && f[2] == f[3]);
@@ -435,7 +429,7 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
         continue;
       }
       for (std::size_t q = 0; q < 4; ++q)
-        if (f[q]) add(kids[q], t[q]);
+        if (f[q]) add(kids[q], exit[q]);
     }
   });
   for (std::size_t j = 0; j < items.size(); ++j)

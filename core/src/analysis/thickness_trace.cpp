@@ -141,6 +141,14 @@ double ray_exit_distance(HitIterator& it, std::uint32_t geom, Vec3d point, Vec3d
 
 namespace detail {
 
+double ray_exit(HitIterator& it, std::uint32_t geom, Vec3d point, Vec3d dir, double max_distance, double tie,
+                std::uint32_t& exit_triangle) {
+  ExitRecord rec;
+  const double t = exit_impl<true>(it, geom, point, dir, max_distance, tie, 0, &rec);
+  exit_triangle = std::isnan(t) ? kInvalidId : rec.prim;
+  return t;
+}
+
 bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const SampleSet& set, ThicknessResult& res,
                    const Progress& progress) {
   const Scene& scene = accel.scene();
