@@ -13,9 +13,10 @@ SHEET=$WORK/sheet.brep
 run "info folded" "$PIERCE" info "$FOLDED" --deflection 0.05
 grep -q "tessellation against the B-rep (26 faces): 0 folded triangles" "$WORK/stdout" ||
   fail "info: no fold expected after remeshing: $(cat "$WORK/stdout")"
-grep -q "first mesh had 1 folded triangles on 1 faces, 26 faces remeshed" "$WORK/stdout" ||
+grep -qE "first mesh had 1 folded triangles on 1 faces, [1-9][0-9]* faces remeshed" "$WORK/stdout" ||
   fail "info: the fold found and the faces remeshed: $(cat "$WORK/stdout")"
 grep -q "folded triangles on 1 faces, meshed again" "$WORK/stderr" || fail "info: warning about the fold"
+grep -q "closed, oriented: 0 boundary edges" "$WORK/stdout" || fail "info: the mesh stays closed: $(cat "$WORK/stdout")"
 run "info folded json" "$PIERCE" info "$FOLDED" --deflection 0.05 --fold-remesh-rounds 0 --json
 $PY - "$WORK/stdout" <<'PYEOF' || fail "info --json tessellation"
 import json, sys

@@ -34,7 +34,10 @@
 #include <TDF_LabelSequence.hxx>
 #include <TDataStd_Name.hxx>
 #include <TDocStd_Document.hxx>
+#include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
+#include <TopTools_ListOfShape.hxx>
 #include <TopLoc_Location.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
@@ -178,29 +181,66 @@ class Collector {
         if (s.link.flags[t] & kTriangleFolded) face_folded[s.link.face[t]] = 1;
       for (auto f : face_folded) check.faces_folded += f;
     }
-    // A fold is an artefact of the mesher (typically at small blends): the solid is meshed
-    // again with a quarter of the deflection and half the angle, minimum sizes adjusted to the
-    // edges, until no fold is left or the rounds are used up.
+    // A fold is an artefact of the mesher (typically at small blends). The folded faces lose
+    // their triangles and the solid is meshed again with the first mesh's edge parameters, a
+    // quarter of the deflection and half the angle inside the faces, the other faces' meshes
+    // allowed to stay: OpenCASCADE meshes the folded faces and those it must to keep the mesh
+    // closed, reusing the edges' divisions elsewhere. This repeats until no fold is left or the
+    // rounds are used up. Should the mesh open all the same, the whole solid is meshed again
+    // with the finer parameters throughout, minimum sizes adjusted to the edges.
     double deflection = deflection_, angle = angle_;
+    const std::size_t open_first = check.folded_found > 0 && opts_.fold_remesh_rounds > 0 ? open_edges(s) : 0;
     while (count_flag(s, kTriangleFolded) > 0 && check.remesh_rounds < opts_.fold_remesh_rounds) {
       deflection *= 0.25;
       angle = std::max(0.5 * angle, 2.0 * std::numbers::pi / 180.0);
-      BRepTools::Clean(shape);
+      const auto tm = std::chrono::steady_clock::now();
+      std::vector<Handle(Poly_Triangulation)> before;
+      for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
+        TopLoc_Location loc;
+        before.push_back(BRep_Tool::Triangulation(TopoDS::Face(ex.Current()), loc));
+      }
+      std::vector<std::uint8_t> folds(s.link.faces->faces.size(), 0);
+      for (std::size_t t = 0; t < s.triangles.size(); ++t)
+        if (s.link.flags[t] & kTriangleFolded) folds[s.link.face[t]] = 1;
+      for (std::size_t f = 0; f < folds.size(); ++f)
+        if (folds[f]) BRep_Builder().UpdateFace(s.link.faces->faces[f].face, Handle(Poly_Triangulation)());
       IMeshTools_Parameters p;
-      p.Deflection = deflection;
-      p.Angle = angle;
+      p.Deflection = deflection_;
+      p.Angle = angle_;
+      p.DeflectionInterior = deflection;
+      p.AngleInterior = angle;
       p.Relative = Standard_False;
       p.InParallel = Standard_True;
-      p.AdjustMinSize = Standard_True;
-      p.ControlSurfaceDeflection = Standard_True;
-      const auto tm = std::chrono::steady_clock::now();
-      BRepMesh_IncrementalMesh again(shape, p);
+      p.AllowQualityDecrease = Standard_True;
+      BRepMesh_IncrementalMesh(shape, p);
+      CadSolid redone;
+      redone.name = name;
+      std::size_t redone_unmeshed = collect(shape, redone);
+      std::size_t changed = 0, k = 0;
+      for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next(), ++k) {
+        TopLoc_Location loc;
+        changed += !same_mesh(BRep_Tool::Triangulation(TopoDS::Face(ex.Current()), loc), before[k]);
+      }
+      if (open_edges(redone) > open_first) {
+        BRepTools::Clean(shape);
+        p = IMeshTools_Parameters{};
+        p.Deflection = deflection;
+        p.Angle = angle;
+        p.Relative = Standard_False;
+        p.InParallel = Standard_True;
+        p.AdjustMinSize = Standard_True;
+        p.ControlSurfaceDeflection = Standard_True;
+        BRepMesh_IncrementalMesh(shape, p);
+        changed = check.faces;
+        redone = CadSolid{};
+        redone.name = name;
+        redone_unmeshed = collect(shape, redone);
+      }
       remesh_seconds += seconds_since(tm);
       ++check.remesh_rounds;
-      check.faces_remeshed += check.faces;
-      s = CadSolid{};
-      s.name = name;
-      unmeshed = collect(shape, s);
+      check.faces_remeshed += changed;
+      s = std::move(redone);
+      unmeshed = redone_unmeshed;
     }
     check.final_deflection = deflection;
     store_plane_pcurves(shape);
@@ -242,6 +282,44 @@ class Collector {
       for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next())
         BRepLib::BuildPCurveForEdgeOnPlane(TopoDS::Edge(e.Current()), face);
     }
+  }
+
+  // Whether two triangulations have the same nodes and triangles.
+  static bool same_mesh(const Handle(Poly_Triangulation) & a, const Handle(Poly_Triangulation) & b) {
+    if (a == b) return true;
+    if (a.IsNull() || b.IsNull() || a->NbNodes() != b->NbNodes() || a->NbTriangles() != b->NbTriangles()) return false;
+    for (Standard_Integer i = 1; i <= a->NbNodes(); ++i)
+      if (a->Node(i).SquareDistance(b->Node(i)) != 0) return false;
+    for (Standard_Integer i = 1; i <= a->NbTriangles(); ++i) {
+      Standard_Integer a1, a2, a3, b1, b2, b3;
+      a->Triangle(i).Get(a1, a2, a3);
+      b->Triangle(i).Get(b1, b2, b3);
+      if (a1 != b1 || a2 != b2 || a3 != b3) return false;
+    }
+    return true;
+  }
+
+  // Edges of the mesh, corners merged as weld() merges them, not shared by exactly two triangles:
+  // a closed mesh has none.
+  static std::size_t open_edges(const CadSolid& s) {
+    CadSolid welded = s;
+    weld(welded);
+    std::vector<std::uint64_t> edges;
+    edges.reserve(3 * welded.triangles.size());
+    for (const Tri& t : welded.triangles)
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t a = t[std::size_t(k)], b = t[std::size_t((k + 1) % 3)];
+        if (a != b) edges.push_back(std::uint64_t(std::min(a, b)) << 32 | std::max(a, b));
+      }
+    std::sort(edges.begin(), edges.end());
+    std::size_t open = 0;
+    for (std::size_t i = 0; i < edges.size();) {
+      std::size_t j = i;
+      while (j < edges.size() && edges[j] == edges[i]) ++j;
+      open += j - i != 2;
+      i = j;
+    }
+    return open;
   }
 
   static std::size_t count_flag(const CadSolid& s, std::uint8_t flag) {
