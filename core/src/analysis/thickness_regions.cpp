@@ -273,6 +273,17 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
     for (std::uint32_t i = 0; i < n; ++i)
       if (res.region[i] >= 0) members[fill[std::size_t(res.region[i])]++] = i;
   }
+  // Region sizes for the refinement limits: the extent of the region's samples and exits, at
+  // least its extreme thickness.
+  std::vector<BBoxd> extent(regions.size());
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (res.region[i] < 0) continue;
+    extent[std::size_t(res.region[i])].extend(res.point[i]);
+    extent[std::size_t(res.region[i])].extend(exit_of(i));
+  }
+  auto region_size = [&](std::size_t r) {
+    return std::max(length(extent[r].hi - extent[r].lo), regions[r].thickness);
+  };
   std::vector<RefineItem> items;
   std::vector<std::uint32_t> listed(tri_base.back(), kInvalidId);  // the last region listing it
   auto in_region = [&](const SolidTopo& t, std::uint32_t element, std::int32_t r) {
@@ -284,9 +295,12 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
     const SolidTopo& t = topo[k];
     const Geometry& geo = *t.geo;
     auto& own = owner[r < thin_count ? 0 : 1];
-    // The triangles whose one-ring may hold some of the region's area (a sample's own triangle
-    // per face, every exit triangle), each once; per vertex, those around its samples (their
-    // one-ring already); then the one-ring of the first.
+    // The triangles that may hold some of the region's area: each once, a sample's own triangle
+    // (per face) and every exit triangle, then per vertex those around its samples, then the
+    // one-ring of the first. Per vertex, an exit triangle no longer than a coarse sub-triangle
+    // grows none: samples that close together on its side show its thin area by themselves
+    // (joining the region through their own rays), so only a coarse far face, whose samples lie
+    // outside the region's shadow, needs its neighbours refined.
     std::vector<std::uint32_t> tris;
     auto list = [&](std::uint32_t tri) {
       if (std::uint32_t& l = listed[tri_base[k] + tri]; l != r) l = std::uint32_t(r), tris.push_back(tri);
@@ -300,9 +314,14 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
     if (opts.per == SampleAt::vertex)
       for (std::uint32_t i : mine)
         for (std::uint32_t tri : t.around_vertex(res.element[i])) list(tri);
-    for (std::size_t q = 0; q < unique_seeds; ++q)
-      for (auto v : geo.triangles[tris[q]])
+    const double coarse = region_size(r) / kCoarseDiv;
+    for (std::size_t q = 0; q < unique_seeds; ++q) {
+      const Tri& c = geo.triangles[tris[q]];
+      if (opts.per == SampleAt::vertex && longest_edge(geo.vertices[c[0]], geo.vertices[c[1]], geo.vertices[c[2]]) <= coarse)
+        continue;
+      for (auto v : c)
         for (std::uint32_t nb : t.around_vertex(v)) list(nb);
+    }
     // In triangle order: sorted, or for a region over much of its solid, read off the marks.
     if (tris.size() * 8 < geo.triangles.size()) {
       std::sort(tris.begin(), tris.end());
@@ -331,17 +350,8 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
       items.push_back({std::uint32_t(r), t.geom, tri, 0, 0});
     }
   }
-  // Region sizes for the refinement limits: the extent of the region's samples and exits.
-  std::vector<BBoxd> extent(regions.size());
-  for (std::uint32_t i = 0; i < n; ++i) {
-    if (res.region[i] < 0) continue;
-    extent[std::size_t(res.region[i])].extend(res.point[i]);
-    extent[std::size_t(res.region[i])].extend(exit_of(i));
-  }
   for (RefineItem& it : items) {
-    const ThicknessRegion& reg = regions[it.region];
-    const BBoxd& b = extent[it.region];
-    const double size = std::max(length(b.hi - b.lo), reg.thickness);
+    const double size = region_size(it.region);
     it.coarse = size / kCoarseDiv, it.fine = size / kFineDiv;
   }
   const std::size_t per_tri =

@@ -12,8 +12,9 @@
 //    mesh, else the triangle of the same solid closest to point - normal * thickness), so both
 //    sides of a thin floor are one region;
 //  - area: both sides of the wall. The exit triangles and, per face, the region's triangles,
-//    with their one-ring neighbours, and per vertex the triangles around the region's vertices
-//    (their one-ring already) are subdivided (4-way, at edge midpoints) where the flag of the
+//    with their one-ring neighbours (per vertex only around exit triangles longer than half the
+//    region's size: elsewhere the samples there show the area), and per vertex the triangles
+//    around the region's vertices (their one-ring already) are subdivided (4-way, at edge midpoints) where the flag of the
 //    sub-triangles' centroids changes, each centroid traced like a ray sample along its
 //    triangle's inward normal (ray_exit_distance, on the mesh), and the flagged sub-triangles'
 //    areas summed, each for the region of its triangle's samples, else of the samples where its
