@@ -23,6 +23,18 @@ SolidPairReport pairs_of(const World& w, double clearance, int grid_n = 64, bool
   return analyse_solid_pairs(w.accel, o);
 }
 
+// The same pairs, kinds and, for clearance, the same gaps and points bit for bit.
+void expect_same_pairs(const SolidPairReport& a, const SolidPairReport& b) {
+  ASSERT_EQ(a.pairs.size(), b.pairs.size());
+  for (std::size_t k = 0; k < a.pairs.size(); ++k) {
+    const SolidPair &x = a.pairs[k], &y = b.pairs[k];
+    EXPECT_EQ(std::tie(x.solid_a, x.solid_b, x.kind), std::tie(y.solid_a, y.solid_b, y.kind)) << k;
+    if (x.kind == PairKind::clearance) {
+      EXPECT_TRUE(x.gap == y.gap && x.point == y.point && x.point_b == y.point_b) << k;
+    }
+  }
+}
+
 TEST(TriangleDistance, ParallelCrossingAndEdgeToEdge) {
   const Vec3d a[3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   // Parallel, 0.25 above a's corner region: the corner (0, 0, 0) is nearest.
@@ -174,25 +186,11 @@ TEST(SolidPairs, ClearanceIsTheMinimumOverAllTrianglePairs) {
     tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
     one_thread = pairs_of(*w, kClearance);
   }
-  ASSERT_EQ(all_threads.pairs.size(), one_thread.pairs.size());
-  for (std::size_t k = 0; k < all_threads.pairs.size(); ++k) {
-    const SolidPair &x = all_threads.pairs[k], &y = one_thread.pairs[k];
-    EXPECT_EQ(std::tie(x.solid_a, x.solid_b, x.kind), std::tie(y.solid_a, y.solid_b, y.kind)) << k;
-    if (x.kind == PairKind::clearance) {
-      EXPECT_TRUE(x.gap == y.gap && x.point == y.point && x.point_b == y.point_b) << k;
-    }
-  }
+  expect_same_pairs(all_threads, one_thread);
   EXPECT_EQ(all_threads.triangle_clearance, one_thread.triangle_clearance);
   const SolidPairReport without_map = pairs_of(*w, kClearance, 64, false);
   EXPECT_TRUE(without_map.triangle_clearance.empty());
-  ASSERT_EQ(without_map.pairs.size(), all_threads.pairs.size());
-  for (std::size_t k = 0; k < all_threads.pairs.size(); ++k) {
-    const SolidPair &x = all_threads.pairs[k], &y = without_map.pairs[k];
-    EXPECT_EQ(std::tie(x.solid_a, x.solid_b, x.kind), std::tie(y.solid_a, y.solid_b, y.kind)) << k;
-    if (x.kind == PairKind::clearance) {
-      EXPECT_TRUE(x.gap == y.gap && x.point == y.point && x.point_b == y.point_b) << k;
-    }
-  }
+  expect_same_pairs(all_threads, without_map);
 
   // Brute force: the least distance from each triangle to each other solid.
   const std::size_t solid_count = scene.geometries().size();

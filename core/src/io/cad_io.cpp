@@ -204,13 +204,9 @@ class Collector {
         if (s.link.flags[t] & kTriangleFolded) folds[s.link.face[t]] = 1;
       for (std::size_t f = 0; f < folds.size(); ++f)
         if (folds[f]) BRep_Builder().UpdateFace(s.link.faces->faces[f].face, Handle(Poly_Triangulation)());
-      IMeshTools_Parameters p;
-      p.Deflection = deflection_;
-      p.Angle = angle_;
+      IMeshTools_Parameters p = absolute_parameters(deflection_, angle_);
       p.DeflectionInterior = deflection;
       p.AngleInterior = angle;
-      p.Relative = Standard_False;
-      p.InParallel = Standard_True;
       p.AllowQualityDecrease = Standard_True;
       BRepMesh_IncrementalMesh(shape, p);
       CadSolid redone;
@@ -223,11 +219,7 @@ class Collector {
       }
       if (open_edges(redone) > open_first) {
         BRepTools::Clean(shape);
-        p = IMeshTools_Parameters{};
-        p.Deflection = deflection;
-        p.Angle = angle;
-        p.Relative = Standard_False;
-        p.InParallel = Standard_True;
+        p = absolute_parameters(deflection, angle);
         p.AdjustMinSize = Standard_True;
         p.ControlSurfaceDeflection = Standard_True;
         BRepMesh_IncrementalMesh(shape, p);
@@ -282,6 +274,16 @@ class Collector {
       for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next())
         BRepLib::BuildPCurveForEdgeOnPlane(TopoDS::Edge(e.Current()), face);
     }
+  }
+
+  // Meshing parameters: this deflection (model units) and angle, faces meshed in parallel.
+  static IMeshTools_Parameters absolute_parameters(double deflection, double angle) {
+    IMeshTools_Parameters p;
+    p.Deflection = deflection;
+    p.Angle = angle;
+    p.Relative = Standard_False;
+    p.InParallel = Standard_True;
+    return p;
   }
 
   // Whether two triangulations have the same nodes and triangles.
