@@ -254,9 +254,10 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
   for (std::uint32_t i = 0; i < n; ++i)
     if (flag[i] != 0) res.region[i] = id_of_root[uf.find(i)];
 
-  // Area. Each region's triangles (holding its samples or exits) and their one-ring; a triangle
-  // is taken by the first region (in id order) of its class that reaches it, so none counts
-  // twice. One whose own and neighbours' samples are all in that region counts whole for it; the
+  // Area. Each region's triangles (holding its samples or exits, and rings around them, below); a
+  // triangle is taken by the first region (in id order) of its class that reaches it, so none
+  // counts twice. One whose own and neighbours' samples are all in that region counts whole for
+  // it; one already finer than the refinement's finest step is shared out by its samples; the
   // others are refined once, their flagged area shared out among the regions below.
   std::vector<std::vector<std::int32_t>> owner(2);  // per class: per (topo, triangle), by offset
   std::vector<std::size_t> tri_base(topo.size() + 1, 0);
@@ -283,6 +284,28 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
   }
   auto region_size = [&](std::size_t r) {
     return std::max(length(extent[r].hi - extent[r].lo), regions[r].thickness);
+  };
+  // A triangle no longer than the finest sub-triangle refinement would trace is sampled densely
+  // enough already: its samples of class `want` share out its area (a corner's third each per
+  // vertex, all of it per face), with no rays traced.
+  auto share_out = [&](const SolidTopo& topology, std::uint32_t tri, std::uint8_t want, auto&& credit) {
+    const Tri& c = topology.geo->triangles[tri];
+    const double area = tri_area(topology.geo->vertices[c[0]], topology.geo->vertices[c[1]], topology.geo->vertices[c[2]]);
+    auto share = [&](std::uint32_t element, double part) {
+      const std::uint32_t row = topology.row_of[element];
+      if (row != kInvalidId && flag[row] == want) credit(res.region[row], part);
+    };
+    if (opts.per == SampleAt::face) {
+      share(tri, area);
+    } else {
+      for (auto v : c) share(v, area / 3);
+    }
+  };
+  auto credit_region = [&](const SolidTopo& topology, std::uint32_t tri, std::int32_t r, double area) {
+    if (!(area > 0)) return;
+    ThicknessRegion& reg = regions[std::size_t(r)];
+    reg.area += area;
+    if (opts.exact && opts.exact->covers(topology.geom)) reg.faces.push_back(opts.exact->face_of(topology.geom, tri));
   };
   std::vector<RefineItem> items;
   std::vector<std::uint32_t> listed(tri_base.back(), kInvalidId);  // the last region listing it
@@ -314,7 +337,7 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
     if (opts.per == SampleAt::vertex)
       for (std::uint32_t i : mine)
         for (std::uint32_t tri : t.around_vertex(res.element[i])) list(tri);
-    const double coarse = region_size(r) / kCoarseDiv;
+    const double coarse = region_size(r) / kCoarseDiv, fine = region_size(r) / kFineDiv;
     for (std::size_t q = 0; q < unique_seeds; ++q) {
       const Tri& c = geo.triangles[tris[q]];
       if (opts.per == SampleAt::vertex && longest_edge(geo.vertices[c[0]], geo.vertices[c[1]], geo.vertices[c[2]]) <= coarse)
@@ -343,11 +366,14 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
       }
       const Tri& c = geo.triangles[tri];
       if (whole) {
-        regions[r].area += tri_area(geo.vertices[c[0]], geo.vertices[c[1]], geo.vertices[c[2]]);
-        if (opts.exact && opts.exact->covers(t.geom)) regions[r].faces.push_back(opts.exact->face_of(t.geom, tri));
-        continue;
+        credit_region(t, tri, std::int32_t(r), tri_area(geo.vertices[c[0]], geo.vertices[c[1]], geo.vertices[c[2]]));
+      } else if (longest_edge(geo.vertices[c[0]], geo.vertices[c[1]], geo.vertices[c[2]]) <= fine) {
+        if (!geo.degenerate[tri])
+          share_out(t, tri, r < thin_count ? kThin : kThick,
+                    [&](std::int32_t region, double part) { credit_region(t, tri, region, part); });
+      } else {
+        items.push_back({std::uint32_t(r), t.geom, tri, 0, 0});
       }
-      items.push_back({std::uint32_t(r), t.geom, tri, 0, 0});
     }
   }
   for (RefineItem& it : items) {
@@ -392,23 +418,7 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
       if (it == out.end()) out.emplace_back(r, a);
       else it->second += a;
     };
-    // A triangle no longer than the finest sub-triangle refinement would trace is sampled densely
-    // enough already: its samples share out its area (a corner's third each per vertex, all of
-    // it per face), with no rays traced.
     const Vec3d v0 = geo.vertices[tri[0]], v1 = geo.vertices[tri[1]], v2 = geo.vertices[tri[2]];
-    if (longest_edge(v0, v1, v2) <= item.fine) {
-      const double area = tri_area(v0, v1, v2);
-      auto share = [&](std::uint32_t element, double part) {
-        const std::uint32_t row = topology.row_of[element];
-        if (row != kInvalidId && flag[row] == want) credit(res.region[row], part);
-      };
-      if (opts.per == SampleAt::face) {
-        share(item.tri, area);
-      } else {
-        for (auto v : tri) share(v, area / 3);
-      }
-      return;
-    }
     auto add = [&](const Sub& k, std::uint32_t exit_triangle) {
       std::int32_t r = own;
       if (r < 0 && exit_triangle != kInvalidId) r = region_on(topology, exit_triangle, want);
@@ -443,12 +453,7 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
     }
   });
   for (std::size_t j = 0; j < items.size(); ++j)
-    for (const auto& [r, a] : item_area[j]) {
-      if (!(a > 0)) continue;
-      ThicknessRegion& reg = regions[std::size_t(r)];
-      reg.area += a;
-      if (opts.exact && opts.exact->covers(items[j].geom)) reg.faces.push_back(opts.exact->face_of(items[j].geom, items[j].tri));
-    }
+    for (const auto& [r, a] : item_area[j]) credit_region(topo[topo_of[items[j].geom]], items[j].tri, r, a);
   for (ThicknessRegion& reg : regions) {
     std::sort(reg.faces.begin(), reg.faces.end());
     reg.faces.erase(std::unique(reg.faces.begin(), reg.faces.end()), reg.faces.end());
