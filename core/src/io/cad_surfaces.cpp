@@ -101,6 +101,7 @@ struct CadSurfaces::Intersectors {
     Bnd_Box box;  // the face's, widened: every point its intersector finds lies in it
     Vec3d lo, hi;  // the box's corners
     std::unique_ptr<IntCurvesFace_Intersector> line;
+    std::uint32_t link_face = kInvalidId;  // the face's index in the link (kInvalidId: not meshed)
   };
   struct OfGeom {
     std::vector<Face> faces;  // every face of the shape, in TopExp_Explorer order
@@ -281,14 +282,17 @@ void clip_to_prism(const PatchPrism& p, Vec3d org, Vec3d dir, double& ta, double
 
 }  // namespace
 
-// Per geometry, mesh_band(), measured on first use.
+// Per geometry, mesh_bands(), measured on first use.
 struct CadSurfaces::MeshBands {
   struct OfGeom {
     std::once_flag built;
-    double band = std::numeric_limits<double>::infinity();
+    std::vector<double> band;      // per face
+    analysis::MeshBands view;      // of `band` and the link's faces
+    bool valid = false;            // measured, every band finite
   };
   explicit MeshBands(std::size_t geometries) : geoms(std::make_unique<OfGeom[]>(geometries)) {}
-  static double measure(const CadLink& l);
+  // The bands per face; empty where the mesh folds or a band is not finite.
+  static std::vector<double> measure(const CadLink& l);
   std::unique_ptr<OfGeom[]> geoms;
 };
 
@@ -312,56 +316,62 @@ double chord_deviation(const CadFaces::Face& f, const std::array<double, 6>& uv)
 
 }  // namespace
 
-double CadSurfaces::MeshBands::measure(const CadLink& l) {
+std::vector<double> CadSurfaces::MeshBands::measure(const CadLink& l) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
-  if (l.check.folded > 0) return kInf;  // a fold turns the mesh inside out there
+  if (l.check.folded > 0) return {};  // a fold turns the mesh inside out there
   const CadFaces& faces = *l.faces;
   std::vector<std::uint8_t> planar(faces.faces.size());
   for (std::size_t f = 0; f < planar.size(); ++f)
     planar[f] = GeomAdaptor_Surface(faces.faces[f].surface).GetType() == GeomAbs_Plane;
-  // Isolated, as HiddenFaces::build: this runs inside the thickness loop's parallel_for.
-  const double deviation = tbb::this_task_arena::isolate([&] {
-    return tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, l.face.size(), 1024), 0.0,
-        [&](const tbb::blocked_range<std::size_t>& range, double acc) {
-          for (std::size_t t = range.begin(); t != range.end(); ++t) {
-            if (planar[l.face[t]]) continue;  // a plane's patch is its chord
-            try {
-              acc = std::max(acc, chord_deviation(faces.faces[l.face[t]], l.uv[t]));
-            } catch (const Standard_Failure&) {
-              acc = kInf;  // the surface cannot be evaluated there: the mesh may lie anywhere
-            }
-            if (!(acc <= kInf)) acc = kInf;  // NaN
-          }
-          return acc;
-        },
-        [](double a, double b) { return std::max(a, b); });
+  // Each triangle's deviation, then the largest per face. Isolated, as HiddenFaces::build: this
+  // runs inside the thickness loop's parallel_for.
+  std::vector<double> deviation(l.face.size(), 0.0);
+  tbb::this_task_arena::isolate([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, l.face.size(), 1024), [&](const auto& range) {
+      for (std::size_t t = range.begin(); t != range.end(); ++t) {
+        if (planar[l.face[t]]) continue;  // a plane's patch is its chord
+        double d = kInf;  // where the surface cannot be evaluated the mesh may lie anywhere
+        try {
+          d = chord_deviation(faces.faces[l.face[t]], l.uv[t]);
+        } catch (const Standard_Failure&) {
+        }
+        deviation[t] = d <= kInf ? d : kInf;  // NaN
+      }
+    });
   });
-  double tolerance = 0;
-  for (const TopAbs_ShapeEnum kind : {TopAbs_FACE, TopAbs_EDGE, TopAbs_VERTEX})
-    for (TopExp_Explorer ex(faces.shape, kind); ex.More(); ex.Next()) {
-      const TopoDS_Shape& sh = ex.Current();
-      const double tol = kind == TopAbs_FACE   ? BRep_Tool::Tolerance(TopoDS::Face(sh))
-                         : kind == TopAbs_EDGE ? BRep_Tool::Tolerance(TopoDS::Edge(sh))
-                                               : BRep_Tool::Tolerance(TopoDS::Vertex(sh));
-      tolerance = std::max(tolerance, tol);
-    }
+  std::vector<double> band(faces.faces.size(), 0.0);
+  for (std::size_t t = 0; t < l.face.size(); ++t) band[l.face[t]] = std::max(band[l.face[t]], deviation[t]);
   const ShapeScale scale = scale_of(faces.shape);
-  const double band = 2 * deviation + 2 * tolerance + 1e-9 * (scale.size + scale.max_abs);
-  return std::isfinite(band) ? band : kInf;
+  const double noise = 1e-9 * (scale.size + scale.max_abs);
+  for (std::size_t f = 0; f < band.size(); ++f) {
+    // The face's own tolerance and those of its edges and vertices: where the B-rep's faces meet
+    // up to them, the gap lies within them of both faces' triangles.
+    const TopoDS_Face& face = faces.faces[f].face;
+    double tolerance = BRep_Tool::Tolerance(face);
+    for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next())
+      tolerance = std::max(tolerance, BRep_Tool::Tolerance(TopoDS::Edge(ex.Current())));
+    for (TopExp_Explorer ex(face, TopAbs_VERTEX); ex.More(); ex.Next())
+      tolerance = std::max(tolerance, BRep_Tool::Tolerance(TopoDS::Vertex(ex.Current())));
+    band[f] = 2 * band[f] + 2 * tolerance + noise;
+    if (!std::isfinite(band[f])) return {};
+  }
+  return band;
 }
 
-double CadSurfaces::mesh_band(std::uint32_t geom) const {
-  if (!covers(geom)) return std::numeric_limits<double>::infinity();
+const analysis::MeshBands* CadSurfaces::mesh_bands(std::uint32_t geom) const {
+  if (!covers(geom)) return nullptr;
   MeshBands::OfGeom& b = bands_->geoms[geom];
   std::call_once(b.built, [&] {
     try {
       b.band = MeshBands::measure(links_[geom]);
     } catch (const Standard_Failure&) {
-      b.band = std::numeric_limits<double>::infinity();
+      b.band.clear();
     }
+    if (b.band.empty()) return;
+    b.view = analysis::MeshBands{links_[geom].face, b.band, *std::max_element(b.band.begin(), b.band.end())};
+    b.valid = true;
   });
-  return b.band;
+  return b.valid ? &b.view : nullptr;
 }
 
 CadSurfaces::~CadSurfaces() = default;
@@ -370,7 +380,7 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
                                               const analysis::MeshSide* mesh) const {
   const CadLink& l = links_.at(geom);
   if (l.empty() || l.faces->shape.IsNull()) return std::nullopt;
-  const double band = mesh ? mesh_band(geom) : std::numeric_limits<double>::infinity();
+  const analysis::MeshBands* bands = mesh ? mesh_bands(geom) : nullptr;
   try {
     auto& x = intersectors_->per_thread.local()[geom];
     if (!x) {
@@ -379,9 +389,12 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
       const double size = scale.size;
       x->tolerance = 1e-9 * size;
       x->slack = 1e-9 * (size + scale.max_abs);
+      std::size_t meshed = 0;  // the link's faces: the shape's, in the same order, less the unmeshed
       for (TopExp_Explorer ex(l.faces->shape, TopAbs_FACE); ex.More(); ex.Next()) {
         const TopoDS_Face& face = TopoDS::Face(ex.Current());
         Intersectors::Face f;
+        if (meshed < l.faces->faces.size() && l.faces->faces[meshed].face.IsEqual(face))
+          f.link_face = std::uint32_t(meshed++);
         BRepBndLib::Add(face, f.box);  // widened by the face's, edges' and vertices' tolerances
         double tol = BRep_Tool::Tolerance(face);
         for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next())
@@ -403,37 +416,44 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
       }
       return false;
     };
-    // Where the line crosses a face (touching one, tangent to it, is no crossing), nearest first.
-    std::vector<double> crossings;
+    // Where the line crosses a face (touching one, tangent to it, is no crossing), nearest first,
+    // with the mesh's band of the face (infinite where the mesh does not answer).
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    std::vector<std::pair<double, double>> crossings;
     for (Intersectors::Face& f : x->faces) {
       if (behind(f) || f.box.IsOut(line)) continue;
-      f.line->Perform(line, tmin, std::numeric_limits<double>::infinity());
+      f.line->Perform(line, tmin, kInf);
       if (!f.line->IsDone()) return std::nullopt;
+      const double band = bands && f.link_face != kInvalidId ? bands->band[f.link_face] : kInf;
       for (Standard_Integer i = 1; i <= f.line->NbPnt(); ++i)
         if (f.line->Transition(i) != IntCurveSurface_Tangent && f.line->WParameter(i) > tmin)
-          crossings.push_back(f.line->WParameter(i));
+          crossings.emplace_back(f.line->WParameter(i), band);
     }
     std::sort(crossings.begin(), crossings.end());
     // The ray leaves at the first crossing beyond which it is outside the solid, settled by
     // classifying the line between it and the next crossing: OpenCASCADE's transitions cannot be
     // trusted where the line runs in a face (a vertex sample on a rim, down the face below it: it
     // reports a crossing, "out" through the face's interior, every 1e-4 along it). Beyond the last
-    // crossing the line is outside. A point farther than `band` from the mesh lies on the same
-    // side of the mesh and of the B-rep (the mesh deforms into the B-rep within the band without
-    // passing it): there the mesh's winding number answers, and OpenCASCADE's classifier (a
-    // line intersection of the whole solid per point) is asked only in the band.
+    // crossing the line is outside. A point farther from every triangle than the band of the
+    // triangle's face lies on the same side of the mesh and of the B-rep (the mesh deforms into
+    // the B-rep within the bands without passing it): there the mesh's winding number answers,
+    // and OpenCASCADE's classifier (a line intersection of the whole solid per point) is asked
+    // only in the bands. A point within the band of both crossings' faces of them is not asked
+    // of the mesh (it lies in the band of the triangles there, as good as certainly).
     for (std::size_t i = 0; i < crossings.size(); ++i) {
-      if (i + 1 == crossings.size()) return crossings[i];
-      const double mid = 0.5 * (crossings[i] + crossings[i + 1]);
-      if (mid - crossings[i] <= x->tolerance) continue;  // the same crossing, reported twice
-      const analysis::MeshSide::Side side = std::isfinite(band) && mid - crossings[i] > band
-                                                ? mesh->side(geom, org + dir * mid, dir, band)
+      const double ti = crossings[i].first;
+      if (i + 1 == crossings.size()) return ti;
+      const double mid = 0.5 * (ti + crossings[i + 1].first);
+      if (mid - ti <= x->tolerance) continue;  // the same crossing, reported twice
+      const double near_band = std::min(crossings[i].second, crossings[i + 1].second);
+      const analysis::MeshSide::Side side = std::isfinite(near_band) && mid - ti > near_band
+                                                ? mesh->side(geom, org + dir * mid, dir, *bands)
                                                 : analysis::MeshSide::unknown;
-      if (side == analysis::MeshSide::outside) return crossings[i];
+      if (side == analysis::MeshSide::outside) return ti;
       if (side == analysis::MeshSide::inside) continue;
       if (!x->inside_loaded) x->inside.Load(l.faces->shape), x->inside_loaded = true;
       x->inside.Perform(line.Location().Translated(gp_Vec(line.Direction()) * mid), x->tolerance);
-      if (x->inside.State() == TopAbs_OUT) return crossings[i];
+      if (x->inside.State() == TopAbs_OUT) return ti;
     }
     return std::nullopt;
   } catch (const Standard_Failure&) {
