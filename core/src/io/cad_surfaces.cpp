@@ -8,6 +8,8 @@
 #include <BRepTopAdaptor_FClass2d.hxx>
 #include <Bnd_Box.hxx>
 #include <GeomAdaptor_Surface.hxx>
+#include <gp_Cylinder.hxx>
+#include <gp_Sphere.hxx>
 #include <IntCurvesFace_Intersector.hxx>
 #include <IntCurveSurface_TransitionOnCurve.hxx>
 #include <TopExp_Explorer.hxx>
@@ -102,6 +104,11 @@ struct CadSurfaces::Intersectors {
     Vec3d lo, hi;  // the box's corners
     std::unique_ptr<IntCurvesFace_Intersector> line;
     std::uint32_t link_face = kInvalidId;  // the face's index in the link (kInvalidId: not meshed)
+    // A cylinder's or a sphere's: where the line comes within `radius` + `slack` of the axis
+    // (through `centre` along unit `axis`) or of the centre; its points lie there.
+    enum Kind : std::uint8_t { other, cylinder, sphere } kind = other;
+    Vec3d centre, axis;
+    double radius = 0, slack = 0;
   };
   struct OfGeom {
     std::vector<Face> faces;  // every face of the shape, in TopExp_Explorer order
@@ -401,6 +408,17 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
           tol = std::max(tol, BRep_Tool::Tolerance(TopoDS::Edge(e.Current())));
         f.box.Enlarge(10 * tol + 1e-6 * size);  // points ON an edge lie within its tolerance
         f.box.Get(f.lo.x, f.lo.y, f.lo.z, f.hi.x, f.hi.y, f.hi.z);
+        const GeomAdaptor_Surface surface(BRep_Tool::Surface(face));  // placed as the face
+        f.slack = 10 * tol + 1e-6 * size;  // as the box's: far above the intersector's tolerance
+        if (surface.GetType() == GeomAbs_Cylinder) {
+          const gp_Cylinder c = surface.Cylinder();
+          f.kind = Intersectors::Face::cylinder;
+          f.centre = vec(c.Location().XYZ()), f.axis = vec(c.Axis().Direction().XYZ()), f.radius = c.Radius();
+        } else if (surface.GetType() == GeomAbs_Sphere) {
+          const gp_Sphere c = surface.Sphere();
+          f.kind = Intersectors::Face::sphere;
+          f.centre = vec(c.Location().XYZ()), f.radius = c.Radius();
+        }
         f.line = std::make_unique<IntCurvesFace_Intersector>(face, x->tolerance);
         x->faces.push_back(std::move(f));
       }
@@ -416,12 +434,47 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
       }
       return false;
     };
+    // A cylinder or sphere holds no crossing beyond tmin either where the line comes within its
+    // slack of the surface (|distance to the axis or centre - radius| <= slack) only outside the
+    // face's box or before tmin. The slack is far above the intersector's tolerance and the
+    // rounding here, so every point it finds lies in these parts of the line.
+    auto clear_of = [&](const Intersectors::Face& f) {
+      if (f.kind == Intersectors::Face::other) return false;
+      Vec3d o = org - f.centre, d = dir;
+      if (f.kind == Intersectors::Face::cylinder) {
+        o = o - f.axis * dot(o, f.axis), d = d - f.axis * dot(d, f.axis);
+      }
+      // The distance to the axis or centre is sqrt(|near|^2 + (t - mid)^2 dd).
+      const double dd = dot(d, d);
+      if (!(dd > 1e-12)) return false;  // about along the axis: not decided here
+      const double mid = -dot(o, d) / dd;
+      const Vec3d near = o + d * mid;
+      const double n2 = dot(near, near), outer = f.radius + f.slack, inner = f.radius - f.slack;
+      const double h_out = (outer * outer - n2) / dd;
+      if (!(h_out >= 0)) return std::isfinite(h_out);  // the line passes farther than radius + slack
+      const double w_out = std::sqrt(h_out);
+      const double w_in = inner > 0 && inner * inner > n2 ? std::sqrt((inner * inner - n2) / dd) : 0.0;
+      // The box's part of the line beyond tmin: [a, b].
+      double a = tmin, b = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k < 3; ++k) {
+        if (dir[k] == 0) {
+          if (org[k] < f.lo[k] || org[k] > f.hi[k]) return true;
+          continue;
+        }
+        double t0 = (f.lo[k] - org[k]) / dir[k], t1 = (f.hi[k] - org[k]) / dir[k];
+        if (t0 > t1) std::swap(t0, t1);
+        a = std::max(a, t0), b = std::min(b, t1);
+      }
+      const bool first = std::max(a, mid - w_out) <= std::min(b, mid - w_in);
+      const bool second = std::max(a, mid + w_in) <= std::min(b, mid + w_out);
+      return !first && !second;
+    };
     // Where the line crosses a face (touching one, tangent to it, is no crossing), nearest first,
     // with the mesh's band of the face (infinite where the mesh does not answer).
     constexpr double kInf = std::numeric_limits<double>::infinity();
     std::vector<std::pair<double, double>> crossings;
     for (Intersectors::Face& f : x->faces) {
-      if (behind(f) || f.box.IsOut(line)) continue;
+      if (behind(f) || f.box.IsOut(line) || clear_of(f)) continue;
       f.line->Perform(line, tmin, kInf);
       if (!f.line->IsDone()) return std::nullopt;
       const double band = bands && f.link_face != kInvalidId ? bands->band[f.link_face] : kInf;
