@@ -23,6 +23,7 @@
 #include <gp_Vec.hxx>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <map>
 #include <mutex>
@@ -133,6 +134,7 @@ struct CadSurfaces::Classifiers {
   tbb::enumerable_thread_specific<PerThread> per_thread;
   struct Grid {
     std::once_flag built;
+    std::atomic<bool> ready{false};  // `grid` is built: no call_once, no classifier needed to read it
     TrimGrid grid;
   };
   std::vector<std::unique_ptr<Grid[]>> grids;  // [geom][face]
@@ -168,15 +170,20 @@ struct CadSurfaces::Classifiers {
   // Where (u, v) (in the face's period window) lies against the trim of `face`, as its classifier
   // says; TopAbs_IN where the face is unclassifiable.
   TopAbs_State state(const std::vector<CadLink>& links, std::uint32_t geom, std::uint32_t face, double u, double v) {
-    const BRepTopAdaptor_FClass2d* trim = of(links, geom, face);
-    if (!trim) return TopAbs_IN;
     Grid& g = grids[geom][face];
-    std::call_once(g.built, [&] {
-      const CadFaces::Face& f = links[geom].faces->faces[face];
-      g.grid = TrimGrid(f.face, f.umin, f.umax, f.vmin, f.vmax, *trim);
-    });
+    if (!g.ready.load(std::memory_order_acquire)) {
+      const BRepTopAdaptor_FClass2d* trim = of(links, geom, face);
+      if (!trim) return TopAbs_IN;
+      std::call_once(g.built, [&] {
+        const CadFaces::Face& f = links[geom].faces->faces[face];
+        g.grid = TrimGrid(f.face, f.umin, f.umax, f.vmin, f.vmax, *trim);
+      });
+      g.ready.store(true, std::memory_order_release);
+    }
     const TopAbs_State known = g.grid.state(u, v);
     if (known != TopAbs_UNKNOWN) return known;
+    const BRepTopAdaptor_FClass2d* trim = of(links, geom, face);
+    if (!trim) return TopAbs_IN;
     return trim->Perform(gp_Pnt2d(u, v));
   }
 };
@@ -288,6 +295,18 @@ void clip_to_prism(const PatchPrism& p, Vec3d org, Vec3d dir, double& ta, double
 }
 
 }  // namespace
+
+// Per triangle of every geometry, Start::size (negative until computed).
+struct CadSurfaces::Sizes {
+  std::vector<std::vector<std::atomic<double>>> geoms;
+  explicit Sizes(const std::vector<CadLink>& links) : geoms(links.size()) {
+    for (std::size_t g = 0; g < links.size(); ++g) {
+      geoms[g] = std::vector<std::atomic<double>>(links[g].face.size());
+      for (std::atomic<double>& a : geoms[g]) a.store(-1.0, std::memory_order_relaxed);
+    }
+  }
+  std::atomic<double>& of(std::uint32_t geom, std::uint32_t prim) { return geoms.at(geom).at(prim); }
+};
 
 // Per geometry, mesh_bands(), measured on first use.
 struct CadSurfaces::MeshBands {
@@ -519,7 +538,8 @@ CadSurfaces::CadSurfaces(std::vector<CadLink> links)
       intersectors_(std::make_unique<Intersectors>()),
       classifiers_(std::make_unique<Classifiers>(links_)),
       hidden_(std::make_unique<HiddenFaces>(links_.size())),
-      bands_(std::make_unique<MeshBands>(links_.size())) {
+      bands_(std::make_unique<MeshBands>(links_.size())),
+      sizes_(std::make_unique<Sizes>(links_)) {
   folded_.resize(links_.size());
   for (std::size_t g = 0; g < links_.size(); ++g) {
     const CadLink& l = links_[g];
@@ -546,14 +566,20 @@ std::span<const std::uint8_t> CadSurfaces::folded(std::uint32_t geom) const {
 
 namespace {
 
-Start start_of(const CadLink& l, std::uint32_t prim, double b1, double b2) {
+// `size` caches Start::size of the triangle (negative until computed; the same value from any
+// thread).
+Start start_of(const CadLink& l, std::uint32_t prim, double b1, double b2, std::atomic<double>& size) {
   const CadFaces::Face& f = l.faces->faces.at(l.face.at(prim));
   const auto& uv = l.uv[prim];
   const double b0 = 1.0 - b1 - b2;
   Start s{&f, b0 * uv[0] + b1 * uv[2] + b2 * uv[4], b0 * uv[1] + b1 * uv[3] + b2 * uv[5], 0};
-  gp_Pnt c[3];
-  for (int k = 0; k < 3; ++k) c[k] = f.surface->Value(uv[std::size_t(2 * k)], uv[std::size_t(2 * k + 1)]);
-  s.size = std::max({c[0].Distance(c[1]), c[1].Distance(c[2]), c[2].Distance(c[0])});
+  s.size = size.load(std::memory_order_relaxed);
+  if (!(s.size >= 0)) {
+    gp_Pnt c[3];
+    for (int k = 0; k < 3; ++k) c[k] = f.surface->Value(uv[std::size_t(2 * k)], uv[std::size_t(2 * k + 1)]);
+    s.size = std::max({c[0].Distance(c[1]), c[1].Distance(c[2]), c[2].Distance(c[0])});
+    size.store(s.size, std::memory_order_relaxed);
+  }
   return s;
 }
 
@@ -593,7 +619,7 @@ std::optional<analysis::NearestFacePoint> CadSurfaces::nearest_on_faces(std::uin
 
 std::optional<analysis::SurfacePoint> CadSurfaces::foot(std::uint32_t geom, std::uint32_t prim, double b1, double b2,
                                                         Vec3d p, double& u_out, double& v_out) const {
-  const Start s = start_of(links_.at(geom), prim, b1, b2);
+  const Start s = start_of(links_.at(geom), prim, b1, b2, sizes_->of(geom, prim));
   const Geom_Surface& surf = *s.face->surface;
   double u = s.u, v = s.v;
   const gp_Pnt p0 = surf.Value(u, v);
@@ -652,7 +678,7 @@ std::optional<analysis::SurfacePoint> CadSurfaces::foot(std::uint32_t geom, std:
 // S(u, v) = org + t dir: Newton on (u, v, t) with the Jacobian [Su Sv -dir].
 std::optional<analysis::SurfaceCrossing> CadSurfaces::intersect(std::uint32_t geom, std::uint32_t prim, double b1,
                                                                 double b2, Vec3d org, Vec3d dir) const {
-  const Start s = start_of(links_.at(geom), prim, b1, b2);
+  const Start s = start_of(links_.at(geom), prim, b1, b2, sizes_->of(geom, prim));
   const Geom_Surface& surf = *s.face->surface;
   double u = s.u, v = s.v;
   const gp_Vec d(dir.x, dir.y, dir.z);

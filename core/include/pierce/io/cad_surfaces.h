@@ -46,6 +46,7 @@ class CadSurfaces final : public analysis::ExactSurfaces {
   struct Classifiers;   // per face, whether a (u, v) lies inside its trimming wires
   struct HiddenFaces;   // the patches that bulge into the solid, for hidden_crossing
   struct MeshBands;     // mesh_bands() per geometry, measured on first use
+  struct Sizes;         // per triangle, how far Newton may go from it, computed on first use
   // project(), also giving the foot's (u, v) on the face.
   std::optional<analysis::SurfacePoint> foot(std::uint32_t geom, std::uint32_t prim, double b1, double b2, Vec3d p,
                                              double& u, double& v) const;
@@ -55,6 +56,7 @@ class CadSurfaces final : public analysis::ExactSurfaces {
   std::unique_ptr<Classifiers> classifiers_;
   std::unique_ptr<HiddenFaces> hidden_;
   std::unique_ptr<MeshBands> bands_;
+  std::unique_ptr<Sizes> sizes_;
 };
 
 // The surfaces of every CAD file among `files` (as add_any_model returned them), for a scene of
