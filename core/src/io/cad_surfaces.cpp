@@ -444,14 +444,20 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
     }
     const gp_Lin line(gp_Pnt(org.x, org.y, org.z), gp_Dir(dir.x, dir.y, dir.z));
     // A box the half-line beyond tmin misses holds no crossing there: the line misses it, or
-    // leaves it before tmin, through a side beyond which the point at tmin then lies.
-    const Vec3d at = org + dir * tmin;
+    // leaves it before tmin (clipped to the box widened by a slack far above rounding: a cheaper
+    // test than Bnd_Box::IsOut, which the faces it keeps still go through).
     auto behind = [&](const Intersectors::Face& f) {
+      double a = tmin, b = std::numeric_limits<double>::infinity();
       for (std::size_t k = 0; k < 3; ++k) {
-        if (dir[k] > 0 && at[k] > f.hi[k] + x->slack) return true;
-        if (dir[k] < 0 && at[k] < f.lo[k] - x->slack) return true;
+        const double lo = f.lo[k] - x->slack, hi = f.hi[k] + x->slack;
+        if (dir[k] == 0) {
+          if (org[k] < lo || org[k] > hi) return true;
+          continue;
+        }
+        const double t0 = (lo - org[k]) / dir[k], t1 = (hi - org[k]) / dir[k];
+        a = std::max(a, std::min(t0, t1)), b = std::min(b, std::max(t0, t1));
       }
-      return false;
+      return a > b;
     };
     // A cylinder or sphere holds no crossing beyond tmin either where the line comes within its
     // slack of the surface (|distance to the axis or centre - radius| <= slack) only outside the
