@@ -655,7 +655,9 @@ std::optional<analysis::SurfacePoint> CadSurfaces::foot(std::uint32_t geom, std:
   }
   const gp_Pnt target(p.x, p.y, p.z);
   auto plausible = [&](double uu, double vv) {
-    return in_range(*s.face, uu, vv, 1e-3) && surf.Value(uu, vv).Distance(p0) <= 2 * s.size + surf.Value(uu, vv).Distance(target);
+    if (!in_range(*s.face, uu, vv, 1e-3)) return false;
+    const gp_Pnt at = surf.Value(uu, vv);
+    return at.Distance(p0) <= 2 * s.size + at.Distance(target);
   };
   if (!converged || !plausible(u, v)) {
     // Newton failed (near a pole or a strongly curved patch): OpenCASCADE's projection on the
