@@ -91,23 +91,29 @@ struct Measured {
 };
 
 // MeshSide on the scene's mesh, with a worker's traversal state: the triangles near the point are
-// found on the float BVH and measured in double precision, the winding number is counted along
-// the ray by the (exact) thickness kernel.
+// found on the float BVH and measured in double precision, each against its own face's band, the
+// winding number is counted along the ray by the (exact) thickness kernel.
 class SceneMeshSide final : public MeshSide {
  public:
   SceneMeshSide(const Accel& accel, HitIterator& it, NodeStack<float>& stack) : accel_(accel), it_(it), stack_(stack) {}
 
-  Side side(std::uint32_t geom, Vec3d p, Vec3d dir, double band) const override {
+  Side side(std::uint32_t geom, Vec3d p, Vec3d dir, const MeshBands& bands) const override {
     // The kernel may trace the float copy of the mesh (float_rounding_margin from the double one).
-    const double reach = band + float_rounding_margin(accel_.wide());
+    const double margin = float_rounding_margin(accel_.wide());
+    const double reach = bands.largest + margin;  // of every triangle's band: the box holds them all
     BBoxd box;
     box.lo = p - Vec3d{reach, reach, reach};
     box.hi = p + Vec3d{reach, reach, reach};
     bool near = false;
     for_each_overlapping(accel_.scene(), accel_.wide(), box, stack_, [&](const Triangle<double>& t) {
       if (near || t.geom != geom) return;
+      const double r = bands.band[bands.face[t.prim]] + margin;
+      // A triangle whose box lies farther than r from p on some axis is farther than r.
+      for (std::size_t k = 0; k < 3; ++k)
+        if (std::min({t.v0[k], t.v1[k], t.v2[k]}) > p[k] + r || std::max({t.v0[k], t.v1[k], t.v2[k]}) < p[k] - r)
+          return;
       const Vec3d q = closest_point_on_triangle(p, t.v0, t.v1, t.v2);
-      near = !(dot(q - p, q - p) > reach * reach);
+      near = !(dot(q - p, q - p) > r * r);
     });
     if (near) return unknown;
     it_.begin(Ray{p, dir, 0, std::numeric_limits<double>::infinity()});

@@ -8,6 +8,8 @@
 #include <BRepTopAdaptor_FClass2d.hxx>
 #include <Bnd_Box.hxx>
 #include <GeomAdaptor_Surface.hxx>
+#include <gp_Cylinder.hxx>
+#include <gp_Sphere.hxx>
 #include <IntCurvesFace_Intersector.hxx>
 #include <IntCurveSurface_TransitionOnCurve.hxx>
 #include <TopExp_Explorer.hxx>
@@ -21,6 +23,7 @@
 #include <gp_Vec.hxx>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <map>
 #include <mutex>
@@ -101,6 +104,12 @@ struct CadSurfaces::Intersectors {
     Bnd_Box box;  // the face's, widened: every point its intersector finds lies in it
     Vec3d lo, hi;  // the box's corners
     std::unique_ptr<IntCurvesFace_Intersector> line;
+    std::uint32_t link_face = kInvalidId;  // the face's index in the link (kInvalidId: not meshed)
+    // A cylinder's or a sphere's: where the line comes within `radius` + `slack` of the axis
+    // (through `centre` along unit `axis`) or of the centre; its points lie there.
+    enum Kind : std::uint8_t { other, cylinder, sphere } kind = other;
+    Vec3d centre, axis;
+    double radius = 0, slack = 0;
   };
   struct OfGeom {
     std::vector<Face> faces;  // every face of the shape, in TopExp_Explorer order
@@ -125,6 +134,7 @@ struct CadSurfaces::Classifiers {
   tbb::enumerable_thread_specific<PerThread> per_thread;
   struct Grid {
     std::once_flag built;
+    std::atomic<bool> ready{false};  // `grid` is built: no call_once, no classifier needed to read it
     TrimGrid grid;
   };
   std::vector<std::unique_ptr<Grid[]>> grids;  // [geom][face]
@@ -160,15 +170,20 @@ struct CadSurfaces::Classifiers {
   // Where (u, v) (in the face's period window) lies against the trim of `face`, as its classifier
   // says; TopAbs_IN where the face is unclassifiable.
   TopAbs_State state(const std::vector<CadLink>& links, std::uint32_t geom, std::uint32_t face, double u, double v) {
-    const BRepTopAdaptor_FClass2d* trim = of(links, geom, face);
-    if (!trim) return TopAbs_IN;
     Grid& g = grids[geom][face];
-    std::call_once(g.built, [&] {
-      const CadFaces::Face& f = links[geom].faces->faces[face];
-      g.grid = TrimGrid(f.face, f.umin, f.umax, f.vmin, f.vmax, *trim);
-    });
+    if (!g.ready.load(std::memory_order_acquire)) {
+      const BRepTopAdaptor_FClass2d* trim = of(links, geom, face);
+      if (!trim) return TopAbs_IN;
+      std::call_once(g.built, [&] {
+        const CadFaces::Face& f = links[geom].faces->faces[face];
+        g.grid = TrimGrid(f.face, f.umin, f.umax, f.vmin, f.vmax, *trim);
+      });
+      g.ready.store(true, std::memory_order_release);
+    }
     const TopAbs_State known = g.grid.state(u, v);
     if (known != TopAbs_UNKNOWN) return known;
+    const BRepTopAdaptor_FClass2d* trim = of(links, geom, face);
+    if (!trim) return TopAbs_IN;
     return trim->Perform(gp_Pnt2d(u, v));
   }
 };
@@ -281,14 +296,29 @@ void clip_to_prism(const PatchPrism& p, Vec3d org, Vec3d dir, double& ta, double
 
 }  // namespace
 
-// Per geometry, mesh_band(), measured on first use.
+// Per triangle of every geometry, Start::size (negative until computed).
+struct CadSurfaces::Sizes {
+  std::vector<std::vector<std::atomic<double>>> geoms;
+  explicit Sizes(const std::vector<CadLink>& links) : geoms(links.size()) {
+    for (std::size_t g = 0; g < links.size(); ++g) {
+      geoms[g] = std::vector<std::atomic<double>>(links[g].face.size());
+      for (std::atomic<double>& a : geoms[g]) a.store(-1.0, std::memory_order_relaxed);
+    }
+  }
+  std::atomic<double>& of(std::uint32_t geom, std::uint32_t prim) { return geoms.at(geom).at(prim); }
+};
+
+// Per geometry, mesh_bands(), measured on first use.
 struct CadSurfaces::MeshBands {
   struct OfGeom {
     std::once_flag built;
-    double band = std::numeric_limits<double>::infinity();
+    std::vector<double> band;      // per face
+    analysis::MeshBands view;      // of `band` and the link's faces
+    bool valid = false;            // measured, every band finite
   };
   explicit MeshBands(std::size_t geometries) : geoms(std::make_unique<OfGeom[]>(geometries)) {}
-  static double measure(const CadLink& l);
+  // The bands per face; empty where the mesh folds or a band is not finite.
+  static std::vector<double> measure(const CadLink& l);
   std::unique_ptr<OfGeom[]> geoms;
 };
 
@@ -312,56 +342,62 @@ double chord_deviation(const CadFaces::Face& f, const std::array<double, 6>& uv)
 
 }  // namespace
 
-double CadSurfaces::MeshBands::measure(const CadLink& l) {
+std::vector<double> CadSurfaces::MeshBands::measure(const CadLink& l) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
-  if (l.check.folded > 0) return kInf;  // a fold turns the mesh inside out there
+  if (l.check.folded > 0) return {};  // a fold turns the mesh inside out there
   const CadFaces& faces = *l.faces;
   std::vector<std::uint8_t> planar(faces.faces.size());
   for (std::size_t f = 0; f < planar.size(); ++f)
     planar[f] = GeomAdaptor_Surface(faces.faces[f].surface).GetType() == GeomAbs_Plane;
-  // Isolated, as HiddenFaces::build: this runs inside the thickness loop's parallel_for.
-  const double deviation = tbb::this_task_arena::isolate([&] {
-    return tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, l.face.size(), 1024), 0.0,
-        [&](const tbb::blocked_range<std::size_t>& range, double acc) {
-          for (std::size_t t = range.begin(); t != range.end(); ++t) {
-            if (planar[l.face[t]]) continue;  // a plane's patch is its chord
-            try {
-              acc = std::max(acc, chord_deviation(faces.faces[l.face[t]], l.uv[t]));
-            } catch (const Standard_Failure&) {
-              acc = kInf;  // the surface cannot be evaluated there: the mesh may lie anywhere
-            }
-            if (!(acc <= kInf)) acc = kInf;  // NaN
-          }
-          return acc;
-        },
-        [](double a, double b) { return std::max(a, b); });
+  // Each triangle's deviation, then the largest per face. Isolated, as HiddenFaces::build: this
+  // runs inside the thickness loop's parallel_for.
+  std::vector<double> deviation(l.face.size(), 0.0);
+  tbb::this_task_arena::isolate([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, l.face.size(), 1024), [&](const auto& range) {
+      for (std::size_t t = range.begin(); t != range.end(); ++t) {
+        if (planar[l.face[t]]) continue;  // a plane's patch is its chord
+        double d = kInf;  // where the surface cannot be evaluated the mesh may lie anywhere
+        try {
+          d = chord_deviation(faces.faces[l.face[t]], l.uv[t]);
+        } catch (const Standard_Failure&) {
+        }
+        deviation[t] = d <= kInf ? d : kInf;  // NaN
+      }
+    });
   });
-  double tolerance = 0;
-  for (const TopAbs_ShapeEnum kind : {TopAbs_FACE, TopAbs_EDGE, TopAbs_VERTEX})
-    for (TopExp_Explorer ex(faces.shape, kind); ex.More(); ex.Next()) {
-      const TopoDS_Shape& sh = ex.Current();
-      const double tol = kind == TopAbs_FACE   ? BRep_Tool::Tolerance(TopoDS::Face(sh))
-                         : kind == TopAbs_EDGE ? BRep_Tool::Tolerance(TopoDS::Edge(sh))
-                                               : BRep_Tool::Tolerance(TopoDS::Vertex(sh));
-      tolerance = std::max(tolerance, tol);
-    }
+  std::vector<double> band(faces.faces.size(), 0.0);
+  for (std::size_t t = 0; t < l.face.size(); ++t) band[l.face[t]] = std::max(band[l.face[t]], deviation[t]);
   const ShapeScale scale = scale_of(faces.shape);
-  const double band = 2 * deviation + 2 * tolerance + 1e-9 * (scale.size + scale.max_abs);
-  return std::isfinite(band) ? band : kInf;
+  const double noise = 1e-9 * (scale.size + scale.max_abs);
+  for (std::size_t f = 0; f < band.size(); ++f) {
+    // The face's own tolerance and those of its edges and vertices: where the B-rep's faces meet
+    // up to them, the gap lies within them of both faces' triangles.
+    const TopoDS_Face& face = faces.faces[f].face;
+    double tolerance = BRep_Tool::Tolerance(face);
+    for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next())
+      tolerance = std::max(tolerance, BRep_Tool::Tolerance(TopoDS::Edge(ex.Current())));
+    for (TopExp_Explorer ex(face, TopAbs_VERTEX); ex.More(); ex.Next())
+      tolerance = std::max(tolerance, BRep_Tool::Tolerance(TopoDS::Vertex(ex.Current())));
+    band[f] = 2 * band[f] + 2 * tolerance + noise;
+    if (!std::isfinite(band[f])) return {};
+  }
+  return band;
 }
 
-double CadSurfaces::mesh_band(std::uint32_t geom) const {
-  if (!covers(geom)) return std::numeric_limits<double>::infinity();
+const analysis::MeshBands* CadSurfaces::mesh_bands(std::uint32_t geom) const {
+  if (!covers(geom)) return nullptr;
   MeshBands::OfGeom& b = bands_->geoms[geom];
   std::call_once(b.built, [&] {
     try {
       b.band = MeshBands::measure(links_[geom]);
     } catch (const Standard_Failure&) {
-      b.band = std::numeric_limits<double>::infinity();
+      b.band.clear();
     }
+    if (b.band.empty()) return;
+    b.view = analysis::MeshBands{links_[geom].face, b.band, *std::max_element(b.band.begin(), b.band.end())};
+    b.valid = true;
   });
-  return b.band;
+  return b.valid ? &b.view : nullptr;
 }
 
 CadSurfaces::~CadSurfaces() = default;
@@ -370,7 +406,7 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
                                               const analysis::MeshSide* mesh) const {
   const CadLink& l = links_.at(geom);
   if (l.empty() || l.faces->shape.IsNull()) return std::nullopt;
-  const double band = mesh ? mesh_band(geom) : std::numeric_limits<double>::infinity();
+  const analysis::MeshBands* bands = mesh ? mesh_bands(geom) : nullptr;
   try {
     auto& x = intersectors_->per_thread.local()[geom];
     if (!x) {
@@ -379,61 +415,123 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
       const double size = scale.size;
       x->tolerance = 1e-9 * size;
       x->slack = 1e-9 * (size + scale.max_abs);
+      std::size_t meshed = 0;  // the link's faces: the shape's, in the same order, less the unmeshed
       for (TopExp_Explorer ex(l.faces->shape, TopAbs_FACE); ex.More(); ex.Next()) {
         const TopoDS_Face& face = TopoDS::Face(ex.Current());
         Intersectors::Face f;
+        if (meshed < l.faces->faces.size() && l.faces->faces[meshed].face.IsEqual(face))
+          f.link_face = std::uint32_t(meshed++);
         BRepBndLib::Add(face, f.box);  // widened by the face's, edges' and vertices' tolerances
         double tol = BRep_Tool::Tolerance(face);
         for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next())
           tol = std::max(tol, BRep_Tool::Tolerance(TopoDS::Edge(e.Current())));
         f.box.Enlarge(10 * tol + 1e-6 * size);  // points ON an edge lie within its tolerance
         f.box.Get(f.lo.x, f.lo.y, f.lo.z, f.hi.x, f.hi.y, f.hi.z);
+        const GeomAdaptor_Surface surface(BRep_Tool::Surface(face));  // placed as the face
+        f.slack = 10 * tol + 1e-6 * size;  // as the box's: far above the intersector's tolerance
+        if (surface.GetType() == GeomAbs_Cylinder) {
+          const gp_Cylinder c = surface.Cylinder();
+          f.kind = Intersectors::Face::cylinder;
+          f.centre = vec(c.Location().XYZ()), f.axis = vec(c.Axis().Direction().XYZ()), f.radius = c.Radius();
+        } else if (surface.GetType() == GeomAbs_Sphere) {
+          const gp_Sphere c = surface.Sphere();
+          f.kind = Intersectors::Face::sphere;
+          f.centre = vec(c.Location().XYZ()), f.radius = c.Radius();
+        }
         f.line = std::make_unique<IntCurvesFace_Intersector>(face, x->tolerance);
         x->faces.push_back(std::move(f));
       }
     }
     const gp_Lin line(gp_Pnt(org.x, org.y, org.z), gp_Dir(dir.x, dir.y, dir.z));
     // A box the half-line beyond tmin misses holds no crossing there: the line misses it, or
-    // leaves it before tmin, through a side beyond which the point at tmin then lies.
-    const Vec3d at = org + dir * tmin;
+    // leaves it before tmin (clipped to the box widened by a slack far above rounding: a cheaper
+    // test than Bnd_Box::IsOut, which the faces it keeps still go through).
     auto behind = [&](const Intersectors::Face& f) {
+      double a = tmin, b = std::numeric_limits<double>::infinity();
       for (std::size_t k = 0; k < 3; ++k) {
-        if (dir[k] > 0 && at[k] > f.hi[k] + x->slack) return true;
-        if (dir[k] < 0 && at[k] < f.lo[k] - x->slack) return true;
+        const double lo = f.lo[k] - x->slack, hi = f.hi[k] + x->slack;
+        if (dir[k] == 0) {
+          if (org[k] < lo || org[k] > hi) return true;
+          continue;
+        }
+        const double t0 = (lo - org[k]) / dir[k], t1 = (hi - org[k]) / dir[k];
+        a = std::max(a, std::min(t0, t1)), b = std::min(b, std::max(t0, t1));
       }
-      return false;
+      return a > b;
     };
-    // Where the line crosses a face (touching one, tangent to it, is no crossing), nearest first.
-    std::vector<double> crossings;
+    // A cylinder or sphere holds no crossing beyond tmin either where the line comes within its
+    // slack of the surface (|distance to the axis or centre - radius| <= slack) only outside the
+    // face's box or before tmin. The slack is far above the intersector's tolerance and the
+    // rounding here, so every point it finds lies in these parts of the line.
+    auto clear_of = [&](const Intersectors::Face& f) {
+      if (f.kind == Intersectors::Face::other) return false;
+      Vec3d o = org - f.centre, d = dir;
+      if (f.kind == Intersectors::Face::cylinder) {
+        o = o - f.axis * dot(o, f.axis), d = d - f.axis * dot(d, f.axis);
+      }
+      // The distance to the axis or centre is sqrt(|near|^2 + (t - mid)^2 dd).
+      const double dd = dot(d, d);
+      if (!(dd > 1e-12)) return false;  // about along the axis: not decided here
+      const double mid = -dot(o, d) / dd;
+      const Vec3d near = o + d * mid;
+      const double n2 = dot(near, near), outer = f.radius + f.slack, inner = f.radius - f.slack;
+      const double h_out = (outer * outer - n2) / dd;
+      if (!(h_out >= 0)) return std::isfinite(h_out);  // the line passes farther than radius + slack
+      const double w_out = std::sqrt(h_out);
+      const double w_in = inner > 0 && inner * inner > n2 ? std::sqrt((inner * inner - n2) / dd) : 0.0;
+      // The box's part of the line beyond tmin: [a, b].
+      double a = tmin, b = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k < 3; ++k) {
+        if (dir[k] == 0) {
+          if (org[k] < f.lo[k] || org[k] > f.hi[k]) return true;
+          continue;
+        }
+        double t0 = (f.lo[k] - org[k]) / dir[k], t1 = (f.hi[k] - org[k]) / dir[k];
+        if (t0 > t1) std::swap(t0, t1);
+        a = std::max(a, t0), b = std::min(b, t1);
+      }
+      const bool first = std::max(a, mid - w_out) <= std::min(b, mid - w_in);
+      const bool second = std::max(a, mid + w_in) <= std::min(b, mid + w_out);
+      return !first && !second;
+    };
+    // Where the line crosses a face (touching one, tangent to it, is no crossing), nearest first,
+    // with the mesh's band of the face (infinite where the mesh does not answer).
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    std::vector<std::pair<double, double>> crossings;
     for (Intersectors::Face& f : x->faces) {
-      if (behind(f) || f.box.IsOut(line)) continue;
-      f.line->Perform(line, tmin, std::numeric_limits<double>::infinity());
+      if (behind(f) || f.box.IsOut(line) || clear_of(f)) continue;
+      f.line->Perform(line, tmin, kInf);
       if (!f.line->IsDone()) return std::nullopt;
+      const double band = bands && f.link_face != kInvalidId ? bands->band[f.link_face] : kInf;
       for (Standard_Integer i = 1; i <= f.line->NbPnt(); ++i)
         if (f.line->Transition(i) != IntCurveSurface_Tangent && f.line->WParameter(i) > tmin)
-          crossings.push_back(f.line->WParameter(i));
+          crossings.emplace_back(f.line->WParameter(i), band);
     }
     std::sort(crossings.begin(), crossings.end());
     // The ray leaves at the first crossing beyond which it is outside the solid, settled by
     // classifying the line between it and the next crossing: OpenCASCADE's transitions cannot be
     // trusted where the line runs in a face (a vertex sample on a rim, down the face below it: it
     // reports a crossing, "out" through the face's interior, every 1e-4 along it). Beyond the last
-    // crossing the line is outside. A point farther than `band` from the mesh lies on the same
-    // side of the mesh and of the B-rep (the mesh deforms into the B-rep within the band without
-    // passing it): there the mesh's winding number answers, and OpenCASCADE's classifier (a
-    // line intersection of the whole solid per point) is asked only in the band.
+    // crossing the line is outside. A point farther from every triangle than the band of the
+    // triangle's face lies on the same side of the mesh and of the B-rep (the mesh deforms into
+    // the B-rep within the bands without passing it): there the mesh's winding number answers,
+    // and OpenCASCADE's classifier (a line intersection of the whole solid per point) is asked
+    // only in the bands. A point within the band of both crossings' faces of them is not asked
+    // of the mesh (it lies in the band of the triangles there, as good as certainly).
     for (std::size_t i = 0; i < crossings.size(); ++i) {
-      if (i + 1 == crossings.size()) return crossings[i];
-      const double mid = 0.5 * (crossings[i] + crossings[i + 1]);
-      if (mid - crossings[i] <= x->tolerance) continue;  // the same crossing, reported twice
-      const analysis::MeshSide::Side side = std::isfinite(band) && mid - crossings[i] > band
-                                                ? mesh->side(geom, org + dir * mid, dir, band)
+      const double ti = crossings[i].first;
+      if (i + 1 == crossings.size()) return ti;
+      const double mid = 0.5 * (ti + crossings[i + 1].first);
+      if (mid - ti <= x->tolerance) continue;  // the same crossing, reported twice
+      const double near_band = std::min(crossings[i].second, crossings[i + 1].second);
+      const analysis::MeshSide::Side side = std::isfinite(near_band) && mid - ti > near_band
+                                                ? mesh->side(geom, org + dir * mid, dir, *bands)
                                                 : analysis::MeshSide::unknown;
-      if (side == analysis::MeshSide::outside) return crossings[i];
+      if (side == analysis::MeshSide::outside) return ti;
       if (side == analysis::MeshSide::inside) continue;
       if (!x->inside_loaded) x->inside.Load(l.faces->shape), x->inside_loaded = true;
       x->inside.Perform(line.Location().Translated(gp_Vec(line.Direction()) * mid), x->tolerance);
-      if (x->inside.State() == TopAbs_OUT) return crossings[i];
+      if (x->inside.State() == TopAbs_OUT) return ti;
     }
     return std::nullopt;
   } catch (const Standard_Failure&) {
@@ -446,7 +544,8 @@ CadSurfaces::CadSurfaces(std::vector<CadLink> links)
       intersectors_(std::make_unique<Intersectors>()),
       classifiers_(std::make_unique<Classifiers>(links_)),
       hidden_(std::make_unique<HiddenFaces>(links_.size())),
-      bands_(std::make_unique<MeshBands>(links_.size())) {
+      bands_(std::make_unique<MeshBands>(links_.size())),
+      sizes_(std::make_unique<Sizes>(links_)) {
   folded_.resize(links_.size());
   for (std::size_t g = 0; g < links_.size(); ++g) {
     const CadLink& l = links_[g];
@@ -473,14 +572,20 @@ std::span<const std::uint8_t> CadSurfaces::folded(std::uint32_t geom) const {
 
 namespace {
 
-Start start_of(const CadLink& l, std::uint32_t prim, double b1, double b2) {
+// `size` caches Start::size of the triangle (negative until computed; the same value from any
+// thread).
+Start start_of(const CadLink& l, std::uint32_t prim, double b1, double b2, std::atomic<double>& size) {
   const CadFaces::Face& f = l.faces->faces.at(l.face.at(prim));
   const auto& uv = l.uv[prim];
   const double b0 = 1.0 - b1 - b2;
   Start s{&f, b0 * uv[0] + b1 * uv[2] + b2 * uv[4], b0 * uv[1] + b1 * uv[3] + b2 * uv[5], 0};
-  gp_Pnt c[3];
-  for (int k = 0; k < 3; ++k) c[k] = f.surface->Value(uv[std::size_t(2 * k)], uv[std::size_t(2 * k + 1)]);
-  s.size = std::max({c[0].Distance(c[1]), c[1].Distance(c[2]), c[2].Distance(c[0])});
+  s.size = size.load(std::memory_order_relaxed);
+  if (!(s.size >= 0)) {
+    gp_Pnt c[3];
+    for (int k = 0; k < 3; ++k) c[k] = f.surface->Value(uv[std::size_t(2 * k)], uv[std::size_t(2 * k + 1)]);
+    s.size = std::max({c[0].Distance(c[1]), c[1].Distance(c[2]), c[2].Distance(c[0])});
+    size.store(s.size, std::memory_order_relaxed);
+  }
   return s;
 }
 
@@ -520,7 +625,7 @@ std::optional<analysis::NearestFacePoint> CadSurfaces::nearest_on_faces(std::uin
 
 std::optional<analysis::SurfacePoint> CadSurfaces::foot(std::uint32_t geom, std::uint32_t prim, double b1, double b2,
                                                         Vec3d p, double& u_out, double& v_out) const {
-  const Start s = start_of(links_.at(geom), prim, b1, b2);
+  const Start s = start_of(links_.at(geom), prim, b1, b2, sizes_->of(geom, prim));
   const Geom_Surface& surf = *s.face->surface;
   double u = s.u, v = s.v;
   const gp_Pnt p0 = surf.Value(u, v);
@@ -550,7 +655,9 @@ std::optional<analysis::SurfacePoint> CadSurfaces::foot(std::uint32_t geom, std:
   }
   const gp_Pnt target(p.x, p.y, p.z);
   auto plausible = [&](double uu, double vv) {
-    return in_range(*s.face, uu, vv, 1e-3) && surf.Value(uu, vv).Distance(p0) <= 2 * s.size + surf.Value(uu, vv).Distance(target);
+    if (!in_range(*s.face, uu, vv, 1e-3)) return false;
+    const gp_Pnt at = surf.Value(uu, vv);
+    return at.Distance(p0) <= 2 * s.size + at.Distance(target);
   };
   if (!converged || !plausible(u, v)) {
     // Newton failed (near a pole or a strongly curved patch): OpenCASCADE's projection on the
@@ -579,7 +686,7 @@ std::optional<analysis::SurfacePoint> CadSurfaces::foot(std::uint32_t geom, std:
 // S(u, v) = org + t dir: Newton on (u, v, t) with the Jacobian [Su Sv -dir].
 std::optional<analysis::SurfaceCrossing> CadSurfaces::intersect(std::uint32_t geom, std::uint32_t prim, double b1,
                                                                 double b2, Vec3d org, Vec3d dir) const {
-  const Start s = start_of(links_.at(geom), prim, b1, b2);
+  const Start s = start_of(links_.at(geom), prim, b1, b2, sizes_->of(geom, prim));
   const Geom_Surface& surf = *s.face->surface;
   double u = s.u, v = s.v;
   const gp_Vec d(dir.x, dir.y, dir.z);

@@ -3,6 +3,7 @@
 #include <BRep_Tool.hxx>
 #include <Geom2dAdaptor_Curve.hxx>
 #include <Geom2d_Curve.hxx>
+#include <Geom_Surface.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
@@ -16,11 +17,13 @@ namespace pierce {
 
 namespace {
 
-// Cells per side of a face's grid: kCellsPerSegment times the square root of its wires' segment
-// count (finer where the wires are detailed: a plate with dozens of slots), within
-// [kMinGridCells, kMaxGridCells]; one byte per cell, at most 64 kB per face.
+// Cells of a face's grid: the square of kCellsPerSegment times the square root of its wires'
+// segment count (finer where the wires are detailed: a plate with dozens of slots), that count
+// within [kMinGridCells, kMaxGridCells]; shared between the directions as the (u, v) box's sides
+// on the surface (square cells on a long face too), each direction within [kMinSideCells,
+// kMaxGridCells]. One byte per cell, at most 64 kB per face.
 constexpr double kCellsPerSegment = 6;
-constexpr int kMinGridCells = 16, kMaxGridCells = 256;
+constexpr int kMinGridCells = 64, kMaxGridCells = 256, kMinSideCells = 48;
 // Points per curved edge of the discretised wires (a straight edge needs its two ends).
 constexpr int kCurveSamples = 64;
 // How far past the discretised wires a cell stays unknown, in units of the discretisation's own
@@ -69,8 +72,27 @@ TrimGrid::TrimGrid(const TopoDS_Face& face, double umin, double umax, double vmi
   if (segments.empty()) return;
 
   const double su = umax - umin, sv = vmax - vmin;
-  const int cells_per_side = std::clamp(int(kCellsPerSegment * std::sqrt(double(segments.size()))), kMinGridCells, kMaxGridCells);
-  const int nu = cells_per_side, nv = cells_per_side;
+  const double cells_per_side =
+      std::clamp(kCellsPerSegment * std::sqrt(double(segments.size())), double(kMinGridCells), double(kMaxGridCells));
+  // The box's sides on the surface (polylines along the middle iso-lines): the aspect of the
+  // face as its points are spread; the parameters' own where that is not measurable.
+  double aspect = std::sqrt(su / sv);
+  try {
+    const Handle(Geom_Surface) surface = BRep_Tool::Surface(face);
+    if (!surface.IsNull()) {
+      constexpr int kPieces = 8;
+      double lu = 0, lv = 0;
+      const double um = 0.5 * (umin + umax), vm = 0.5 * (vmin + vmax);
+      for (int k = 0; k < kPieces; ++k) {
+        lu += surface->Value(umin + su * k / kPieces, vm).Distance(surface->Value(umin + su * (k + 1) / kPieces, vm));
+        lv += surface->Value(um, vmin + sv * k / kPieces).Distance(surface->Value(um, vmin + sv * (k + 1) / kPieces));
+      }
+      if (lu > 0 && lv > 0 && std::isfinite(lu / lv)) aspect = std::sqrt(lu / lv);
+    }
+  } catch (const Standard_Failure&) {
+  }
+  const int nu = int(std::clamp(cells_per_side * aspect, double(kMinSideCells), double(kMaxGridCells)));
+  const int nv = int(std::clamp(cells_per_side / aspect, double(kMinSideCells), double(kMaxGridCells)));
   const double du = su / nu, dv = sv / nv;
   const double mu = kSlackCells * du + kDeviationMargin * dev_u, mv = kSlackCells * dv + kDeviationMargin * dev_v;
   constexpr auto kUnset = std::uint8_t(TopAbs_IN + 100), kNear = std::uint8_t(TopAbs_UNKNOWN);

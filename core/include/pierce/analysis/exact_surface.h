@@ -37,18 +37,28 @@ struct NearestFacePoint {
   std::size_t start = 0;  // the index in the starts of the face it lies on
 };
 
+// How far the closed mesh of a solid may lie from its B-rep, face by face: every point of
+// triangle `prim`, and every point it passes on the way to its exact patch, lies within
+// band[face[prim]] of the triangle. So a point farther than that from every triangle lies on the
+// same side of the mesh and of the B-rep.
+struct MeshBands {
+  std::span<const std::uint32_t> face;  // per triangle of the geometry: its B-rep face
+  std::span<const double> band;         // per face, finite
+  double largest = 0;                   // of `band`
+};
+
 // Where a point lies against the closed mesh of a solid, as the caller of exact_exit can tell from
 // its own exact traversal: a cheaper answer than the exact solid's classifier, used by exact_exit
-// only where the two provably agree (the point farther from the mesh than the mesh may lie from
-// the B-rep). One object per thread.
+// only where the two provably agree (the point farther from every triangle than that triangle's
+// face's band). One object per thread.
 class MeshSide {
  public:
   enum Side : int { unknown = -1, outside = 0, inside = 1 };
   virtual ~MeshSide() = default;
   // Whether `p` lies inside the mesh of geometry `geom`: its winding number along `dir` (unit),
-  // counted by an exact kernel. unknown when a triangle of the geometry lies within `band` of
-  // `p`, or the winding number is neither 0 nor 1.
-  virtual Side side(std::uint32_t geom, Vec3d p, Vec3d dir, double band) const = 0;
+  // counted by an exact kernel. unknown when a triangle of the geometry lies within its own face's
+  // band of `p`, or the winding number is neither 0 nor 1.
+  virtual Side side(std::uint32_t geom, Vec3d p, Vec3d dir, const MeshBands& bands) const = 0;
 };
 
 // Every call is const and may run on many threads at once.
@@ -87,8 +97,8 @@ class ExactSurfaces {
   // rim down the face below it stays on the boundary, then inside, and leaves where the material
   // ends. Much slower than intersect(): for the rare samples that need it. With `mesh` (the
   // geometry's mesh is closed), a point between two crossings is classified by the mesh wherever
-  // it lies farther from the mesh than the mesh may deviate from the B-rep; the exact solid's
-  // classifier decides the others.
+  // it lies farther from every triangle than the triangle's face may deviate from it (MeshBands);
+  // the exact solid's classifier decides the others.
   virtual std::optional<double> exact_exit(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin,
                                            const MeshSide* mesh = nullptr) const = 0;
   // The smallest t in (0, t_end) where the line org + t dir (dir unit) crosses a face of

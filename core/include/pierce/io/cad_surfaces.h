@@ -31,11 +31,12 @@ class CadSurfaces final : public analysis::ExactSurfaces {
                                                      Vec3d org, Vec3d dir) const override;
   std::optional<double> exact_exit(std::uint32_t geom, Vec3d org, Vec3d dir, double tmin,
                                    const analysis::MeshSide* mesh = nullptr) const override;
-  // How far the mesh of geometry `geom` may lie from its B-rep: twice the largest deviation of a
-  // triangle from its exact patch (sampled at its edge midpoints and centre, as the hidden
-  // crossings' prisms bound a patch), plus twice the shape's largest tolerance. Infinite where the
-  // mesh still folds (its winding number there is not the solid's).
-  double mesh_band(std::uint32_t geom) const;
+  // How far the mesh of geometry `geom` may lie from its B-rep, per face: twice the largest
+  // deviation of one of the face's triangles from its exact patch (sampled at its edge midpoints
+  // and centre, as the hidden crossings' prisms bound a patch), plus twice the largest tolerance
+  // of the face, its edges and vertices. Null where the mesh still folds (its winding number there
+  // is not the solid's) or a band cannot be measured.
+  const analysis::MeshBands* mesh_bands(std::uint32_t geom) const;
   std::optional<double> hidden_crossing(std::uint32_t geom, Vec3d org, Vec3d dir, double t_end,
                                         std::uint32_t start_face, std::uint32_t end_face) const override;
   ~CadSurfaces() override;
@@ -44,7 +45,8 @@ class CadSurfaces final : public analysis::ExactSurfaces {
   struct Intersectors;  // OpenCASCADE shape intersectors, built on first use
   struct Classifiers;   // per face, whether a (u, v) lies inside its trimming wires
   struct HiddenFaces;   // the patches that bulge into the solid, for hidden_crossing
-  struct MeshBands;     // mesh_band() per geometry, measured on first use
+  struct MeshBands;     // mesh_bands() per geometry, measured on first use
+  struct Sizes;         // per triangle, how far Newton may go from it, computed on first use
   // project(), also giving the foot's (u, v) on the face.
   std::optional<analysis::SurfacePoint> foot(std::uint32_t geom, std::uint32_t prim, double b1, double b2, Vec3d p,
                                              double& u, double& v) const;
@@ -54,6 +56,7 @@ class CadSurfaces final : public analysis::ExactSurfaces {
   std::unique_ptr<Classifiers> classifiers_;
   std::unique_ptr<HiddenFaces> hidden_;
   std::unique_ptr<MeshBands> bands_;
+  std::unique_ptr<Sizes> sizes_;
 };
 
 // The surfaces of every CAD file among `files` (as add_any_model returned them), for a scene of
