@@ -58,10 +58,14 @@ int run(int argc, char** argv) {
   CLI::App app("Cost of B-rep-true thickness (projection + Newton exit refinement) per sample");
   int reps = 5, threads = 2;
   double deflection = 0;
+  double angle = TessellationOptions{}.angular_deflection_deg;
   bool quick = false;
   app.add_option("--reps", reps, "Timed repetitions (best is printed)")->check(CLI::Range(1, 1000));
   app.add_option("--deflection", deflection, "CAD linear deflection (0: 0.1% of the diagonal)")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--angular-deflection", angle, "CAD angular deflection in degrees (finer: more triangles on curved faces)")
+      ->check(CLI::Range(0.01, 179.0))
+      ->capture_default_str();
   app.add_option("--threads", threads, "Threads of the end-to-end run (load and B-rep thickness)")
       ->check(CLI::Range(1, 1024));
   app.add_flag("--quick", quick, "One repetition, coarse meshes (smoke run)");
@@ -98,7 +102,7 @@ int run(int argc, char** argv) {
     else m.write(path);
     TessellationOptions t;
     t.linear_deflection = deflection;
-    if (quick) t.angular_deflection_deg = 30;
+    t.angular_deflection_deg = quick ? 30 : angle;
     // Load (read, mesh, checks), wall time on `threads` threads, best of reps.
     double t_load = std::numeric_limits<double>::infinity();
     CadLoadTimes parts;  // of the fastest load
