@@ -67,10 +67,10 @@ SampleSet build_point_samples(const Scene& scene, const ThicknessOptions& opts, 
                               const std::vector<Vec3d>& points, const std::vector<Vec3d>& normals,
                               ThicknessResult& res);
 
-// ray_exit_distance (no offset), also giving the triangle the ray leaves through (kInvalidId
-// where it does not leave).
+// ray_exit_distance, also giving the triangle the ray leaves through (kInvalidId where it does
+// not leave).
 double ray_exit(HitIterator& it, std::uint32_t geom, Vec3d point, Vec3d dir, double max_distance, double tie,
-                std::uint32_t& exit_triangle);
+                double offset, std::uint32_t& exit_triangle);
 
 // Measures every sample (in parallel, progress per sample) and writes each result slot's
 // thickness and status (CAD: the smallest of a slot's samples, with its point and normal).

@@ -148,9 +148,9 @@ double ray_exit_distance(HitIterator& it, std::uint32_t geom, Vec3d point, Vec3d
 namespace detail {
 
 double ray_exit(HitIterator& it, std::uint32_t geom, Vec3d point, Vec3d dir, double max_distance, double tie,
-                std::uint32_t& exit_triangle) {
+                double offset, std::uint32_t& exit_triangle) {
   ExitRecord rec;
-  const double t = exit_impl<true>(it, geom, point, dir, max_distance, tie, 0, &rec);
+  const double t = exit_impl<true>(it, geom, point, dir, max_distance, tie, offset, &rec);
   exit_triangle = std::isnan(t) ? kInvalidId : rec.prim;
   return t;
 }
@@ -208,12 +208,13 @@ bool trace_samples(const Accel& accel, const ThicknessOptions& opts, const Sampl
   // One ray of a sample: meshes as ray_exit_distance; CAD samples traced on the mesh from the
   // mesh point, then the exit refined on the exact face of the triangle crossed.
   auto one_ray = [&](Worker& w, const Sample& s, const Start& at, Vec3d dir) -> Measured {
-    ExitRecord rec;
     if (!at.cad) {
-      const double t = exit_impl<true>(w.it, s.geom, at.point, dir, opts.max_distance, tie, offset_of(s, at.point, dir), &rec);
-      return {t, ThicknessStatus::ok, std::isnan(t) ? kInvalidId : rec.prim};
+      Measured m;
+      m.t = ray_exit(w.it, s.geom, at.point, dir, opts.max_distance, tie, offset_of(s, at.point, dir), m.exit_triangle);
+      return m;
     }
     const CadSample& c = *at.cad;
+    ExitRecord rec;
     const double tm = exit_impl<true>(w.it, s.geom, c.mesh_point, dir, opts.max_distance, tie, 0, &rec);
     const std::span<const std::uint8_t> folded = folded_flags(opts, s.geom);
     const bool met_fold = !folded.empty() && rec.first_prim != kInvalidId && folded[rec.first_prim] != 0;
