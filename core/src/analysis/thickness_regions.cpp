@@ -190,7 +190,7 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
     parallel_for_items(e - b, 256, stacks, {}, [&](NodeStack<float>& stack, std::size_t j) {
       const std::size_t i = b + j;
       if (flag[i] == 0) return;
-      exit_tri[i] = res.exit_triangle.empty() ? kInvalidId : res.exit_triangle[i];
+      exit_tri[i] = res.exit_triangle[i];
       if (exit_tri[i] == kInvalidId) exit_tri[i] = nearest_triangle(scene, bvh, g, exit_of(i), start, limit, stack);
     });
     for (std::size_t i = b; i < e; ++i) {
@@ -285,27 +285,26 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
   auto region_size = [&](std::size_t r) {
     return std::max(length(extent[r].hi - extent[r].lo), regions[r].thickness);
   };
-  // A triangle no longer than the finest sub-triangle refinement would trace is sampled densely
-  // enough already: its samples of class `want` share out its area (a corner's third each per
-  // vertex, all of it per face), with no rays traced.
-  auto share_out = [&](const SolidTopo& topology, std::uint32_t tri, std::uint8_t want, auto&& credit) {
-    const Tri& c = topology.geo->triangles[tri];
-    const double area = tri_area(topology.geo->vertices[c[0]], topology.geo->vertices[c[1]], topology.geo->vertices[c[2]]);
-    auto share = [&](std::uint32_t element, double part) {
-      const std::uint32_t row = topology.row_of[element];
-      if (row != kInvalidId && flag[row] == want) credit(res.region[row], part);
-    };
-    if (opts.per == SampleAt::face) {
-      share(tri, area);
-    } else {
-      for (auto v : c) share(v, area / 3);
-    }
-  };
+  // Flagged area of triangle `tri` for region r (and its B-rep face, for CAD).
   auto credit_region = [&](const SolidTopo& topology, std::uint32_t tri, std::int32_t r, double area) {
     if (!(area > 0)) return;
     ThicknessRegion& reg = regions[std::size_t(r)];
     reg.area += area;
     if (opts.exact && opts.exact->covers(topology.geom)) reg.faces.push_back(opts.exact->face_of(topology.geom, tri));
+  };
+  // A triangle no longer than the finest sub-triangle refinement would trace is sampled densely
+  // enough already: its samples of class `want` share out its area (a corner's third each per
+  // vertex, all of it per face), with no rays traced.
+  auto share_out = [&](const SolidTopo& topology, std::uint32_t tri, std::uint8_t want, double area) {
+    auto share = [&](std::uint32_t element, double part) {
+      const std::uint32_t row = topology.row_of[element];
+      if (row != kInvalidId && flag[row] == want) credit_region(topology, tri, res.region[row], part);
+    };
+    if (opts.per == SampleAt::face) {
+      share(tri, area);
+    } else {
+      for (auto v : topology.geo->triangles[tri]) share(v, area / 3);
+    }
   };
   std::vector<RefineItem> items;
   std::vector<std::uint32_t> listed(tri_base.back(), kInvalidId);  // the last region listing it
@@ -365,12 +364,11 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
           for (std::uint32_t nb : t.around_vertex(v)) whole = whole && in_region(t, nb, std::int32_t(r));
       }
       const Tri& c = geo.triangles[tri];
+      const double area = tri_area(geo.vertices[c[0]], geo.vertices[c[1]], geo.vertices[c[2]]);
       if (whole) {
-        credit_region(t, tri, std::int32_t(r), tri_area(geo.vertices[c[0]], geo.vertices[c[1]], geo.vertices[c[2]]));
+        credit_region(t, tri, std::int32_t(r), area);
       } else if (longest_edge(geo.vertices[c[0]], geo.vertices[c[1]], geo.vertices[c[2]]) <= fine) {
-        if (!geo.degenerate[tri])
-          share_out(t, tri, r < thin_count ? kThin : kThick,
-                    [&](std::int32_t region, double part) { credit_region(t, tri, region, part); });
+        if (!geo.degenerate[tri]) share_out(t, tri, r < thin_count ? kThin : kThick, area);
       } else {
         items.push_back({std::uint32_t(r), t.geom, tri, 0, 0});
       }
@@ -438,7 +436,7 @@ void find_regions(const Accel& accel, const ThicknessOptions& opts, const Sample
       std::array<bool, 4> f{};
       for (std::size_t q = 0; q < 4; ++q) {
         const Vec3d m = (kids[q].a + kids[q].b + kids[q].c) * (1.0 / 3.0);
-        f[q] = flag_of(ray_exit(w.it, item.geom, m, inward, opts.max_distance, tie, exit[q])) == want;
+        f[q] = flag_of(ray_exit(w.it, item.geom, m, inward, opts.max_distance, tie, 0, exit[q])) == want;
       }
       rays += 4;
       const bool mixed = !(f[0] == f[1] && f[1] == f[2] && f[2] == f[3]);
