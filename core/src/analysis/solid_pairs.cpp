@@ -443,12 +443,14 @@ SolidPairReport classify_solid_pairs(const Accel& accel, const CoplanarReport& c
         }
   }
   // Contact and clash make a triangle's clearance 0 where it takes part in them.
-  for (const CoplanarPair& p : coplanar.pairs)
-    if (triangle_clearance && p.exact && p.geom_a != p.geom_b)
-      r.triangle_clearance[r.tri_offset[p.geom_a] + p.prim_a] = r.triangle_clearance[r.tri_offset[p.geom_b] + p.prim_b] = 0;
-  if (rays.interference_hits.size() == r.triangle_clearance.size())
-    for (std::size_t i = 0; i < r.triangle_clearance.size(); ++i)
-      if (rays.interference_hits[i] > 0) r.triangle_clearance[i] = 0;
+  if (triangle_clearance) {
+    for (const CoplanarPair& p : coplanar.pairs)
+      if (p.exact && p.geom_a != p.geom_b)
+        r.triangle_clearance[r.tri_offset[p.geom_a] + p.prim_a] = r.triangle_clearance[r.tri_offset[p.geom_b] + p.prim_b] = 0;
+    if (rays.interference_hits.size() == r.triangle_clearance.size())
+      for (std::size_t i = 0; i < r.triangle_clearance.size(); ++i)
+        if (rays.interference_hits[i] > 0) r.triangle_clearance[i] = 0;
+  }
 
   std::vector<SolidPair> gaps;
   for (auto& [key, s] : nearest)
