@@ -446,18 +446,24 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
     // A box the half-line beyond tmin misses holds no crossing there: the line misses it, or
     // leaves it before tmin (clipped to the box widened by a slack far above rounding: a cheaper
     // test than Bnd_Box::IsOut, which the faces it keeps still go through).
-    auto behind = [&](const Intersectors::Face& f) {
-      double a = tmin, b = std::numeric_limits<double>::infinity();
+    // The part [a, b] of the line beyond tmin inside the box (lo, hi); false where the line runs
+    // parallel to a side outside it.
+    auto span_in_box = [&](Vec3d lo, Vec3d hi, double& a, double& b) {
+      a = tmin, b = std::numeric_limits<double>::infinity();
       for (std::size_t k = 0; k < 3; ++k) {
-        const double lo = f.lo[k] - x->slack, hi = f.hi[k] + x->slack;
         if (dir[k] == 0) {
-          if (org[k] < lo || org[k] > hi) return true;
+          if (org[k] < lo[k] || org[k] > hi[k]) return false;
           continue;
         }
-        const double t0 = (lo - org[k]) / dir[k], t1 = (hi - org[k]) / dir[k];
+        const double t0 = (lo[k] - org[k]) / dir[k], t1 = (hi[k] - org[k]) / dir[k];
         a = std::max(a, std::min(t0, t1)), b = std::min(b, std::max(t0, t1));
       }
-      return a > b;
+      return true;
+    };
+    auto behind = [&](const Intersectors::Face& f) {
+      const Vec3d slack{x->slack, x->slack, x->slack};
+      double a, b;
+      return !span_in_box(f.lo - slack, f.hi + slack, a, b) || a > b;
     };
     // A cylinder or sphere holds no crossing beyond tmin either where the line comes within its
     // slack of the surface (|distance to the axis or centre - radius| <= slack) only outside the
@@ -479,17 +485,8 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
       if (!(h_out >= 0)) return std::isfinite(h_out);  // the line passes farther than radius + slack
       const double w_out = std::sqrt(h_out);
       const double w_in = inner > 0 && inner * inner > n2 ? std::sqrt((inner * inner - n2) / dd) : 0.0;
-      // The box's part of the line beyond tmin: [a, b].
-      double a = tmin, b = std::numeric_limits<double>::infinity();
-      for (std::size_t k = 0; k < 3; ++k) {
-        if (dir[k] == 0) {
-          if (org[k] < f.lo[k] || org[k] > f.hi[k]) return true;
-          continue;
-        }
-        double t0 = (f.lo[k] - org[k]) / dir[k], t1 = (f.hi[k] - org[k]) / dir[k];
-        if (t0 > t1) std::swap(t0, t1);
-        a = std::max(a, t0), b = std::min(b, t1);
-      }
+      double a, b;  // the box's part of the line beyond tmin
+      if (!span_in_box(f.lo, f.hi, a, b)) return true;
       const bool first = std::max(a, mid - w_out) <= std::min(b, mid - w_in);
       const bool second = std::max(a, mid + w_in) <= std::min(b, mid + w_out);
       return !first && !second;
@@ -516,8 +513,8 @@ std::optional<double> CadSurfaces::exact_exit(std::uint32_t geom, Vec3d org, Vec
     // triangle's face lies on the same side of the mesh and of the B-rep (the mesh deforms into
     // the B-rep within the bands without passing it): there the mesh's winding number answers,
     // and OpenCASCADE's classifier (a line intersection of the whole solid per point) is asked
-    // only in the bands. A point within the band of both crossings' faces of them is not asked
-    // of the mesh (it lies in the band of the triangles there, as good as certainly).
+    // only in the bands. A midpoint within the smaller of the two crossings' faces' bands of the
+    // first crossing is not asked of the mesh: a triangle there would lie within its band.
     for (std::size_t i = 0; i < crossings.size(); ++i) {
       const double ti = crossings[i].first;
       if (i + 1 == crossings.size()) return ti;
